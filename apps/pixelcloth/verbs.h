@@ -1,0 +1,15 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace pixelcloth::apps {
+
+/// Each verb lives in its own file and adds one subcommand to the `pixelcloth` app. The callback
+/// runs the verb; it throws `core::InputError` for bad input (exit code 2).
+void registerBody(CLI::App& app);
+void registerGarment(CLI::App& app);
+void registerPose(CLI::App& app);
+void registerDemo(CLI::App& app);
+void registerBench(CLI::App& app);
+
+}  // namespace pixelcloth::apps

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <map>
+#include <string>
+
+#include <Eigen/Core>
+
+namespace pixelcloth::core {
+
+/// A triangle mesh as Eigen matrices (libigl style), with optional per-corner texture coordinates
+/// and named per-vertex / per-face attributes.
+struct Mesh {
+  Eigen::MatrixX3d V;    ///< #V x 3 vertex positions, metres
+  Eigen::MatrixX3i F;    ///< #F x 3 vertex indices, counter-clockwise seen from outside
+  Eigen::MatrixX2d UV;   ///< #UV x 2 texture coordinates (pattern space, metres); empty when absent
+  Eigen::MatrixX3i FUV;  ///< #F x 3 indices into UV, one per face corner; empty when absent
+  std::map<std::string, Eigen::MatrixXd> vertexAttributes;  ///< each #V x k
+  std::map<std::string, Eigen::VectorXi> faceAttributes;    ///< each #F
+
+  int numVertices() const { return static_cast<int>(V.rows()); }
+  int numFaces() const { return static_cast<int>(F.rows()); }
+  bool hasUV() const { return UV.rows() > 0 && FUV.rows() == F.rows(); }
+
+  /// Throws `InputError` (prefixed with `context`, e.g. a file name) if indices are out of range,
+  /// coordinates are not finite, a face repeats a vertex, or attribute sizes do not match.
+  void validate(const std::string& context = "mesh") const;
+};
+
+/// Per-face unit normals (#F x 3) and per-vertex area-weighted unit normals (#V x 3).
+Eigen::MatrixX3d faceNormals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
+Eigen::MatrixX3d vertexNormals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
+
+/// Result of a topology check: counts of problems, and the first problem in words (empty if none).
+struct TopologyReport {
+  int boundaryEdges = 0;        ///< edges used by exactly one face
+  int nonManifoldEdges = 0;     ///< edges used by more than two faces
+  int inconsistentEdges = 0;    ///< edges used twice in the same direction (faces not consistently oriented)
+  int nonManifoldVertices = 0;  ///< vertices whose faces do not form one fan
+  int isolatedVertices = 0;     ///< vertices used by no face
+  int components = 0;           ///< connected components of faces
+  std::string firstProblem;
+  bool closedManifold() const {
+    return boundaryEdges == 0 && nonManifoldEdges == 0 && inconsistentEdges == 0 && nonManifoldVertices == 0;
+  }
+};
+
+/// Checks whether (V, F) is a closed, consistently oriented 2-manifold.
+TopologyReport checkTopology(int numVertices, const Eigen::MatrixX3i& F);
+
+/// Signed volume enclosed by a closed mesh (positive when faces are oriented outwards), m^3.
+double enclosedVolume(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
+
+}  // namespace pixelcloth::core

@@ -1,0 +1,163 @@
+#include "pixelcloth/core/mesh.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <functional>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+#include <vector>
+
+#include "pixelcloth/core/error.h"
+
+namespace pixelcloth::core {
+
+void Mesh::validate(const std::string& context) const {
+  PIXELCLOTH_CHECK(V.rows() > 0, context << ": the mesh has no vertices");
+  PIXELCLOTH_CHECK(F.rows() > 0, context << ": the mesh has no faces");
+  for (int i = 0; i < V.rows(); ++i) {
+    PIXELCLOTH_CHECK(V.row(i).allFinite(), context << ": vertex " << i << " has a non-finite coordinate ("
+                                                   << V(i, 0) << ", " << V(i, 1) << ", " << V(i, 2) << ")");
+  }
+  for (int f = 0; f < F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      PIXELCLOTH_CHECK(F(f, k) >= 0 && F(f, k) < V.rows(), context << ": face " << f << " uses vertex " << F(f, k)
+                                                                   << ", but the mesh has " << V.rows()
+                                                                   << " vertices");
+    }
+    PIXELCLOTH_CHECK(F(f, 0) != F(f, 1) && F(f, 1) != F(f, 2) && F(f, 0) != F(f, 2),
+                     context << ": face " << f << " repeats a vertex (" << F(f, 0) << ", " << F(f, 1) << ", "
+                             << F(f, 2) << ")");
+  }
+  if (FUV.rows() > 0) {
+    PIXELCLOTH_CHECK(FUV.rows() == F.rows(), context << ": " << FUV.rows() << " texture faces for " << F.rows()
+                                                     << " faces; expected one per face");
+    for (int f = 0; f < FUV.rows(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        PIXELCLOTH_CHECK(FUV(f, k) >= 0 && FUV(f, k) < UV.rows(),
+                         context << ": face " << f << " uses texture coordinate " << FUV(f, k) << ", but there are "
+                                 << UV.rows());
+      }
+    }
+    for (int i = 0; i < UV.rows(); ++i) {
+      PIXELCLOTH_CHECK(UV.row(i).allFinite(), context << ": texture coordinate " << i << " is not finite");
+    }
+  }
+  for (const auto& [name, values] : vertexAttributes) {
+    PIXELCLOTH_CHECK(values.rows() == V.rows(), context << ": vertex attribute '" << name << "' has " << values.rows()
+                                                        << " rows, expected " << V.rows());
+  }
+  for (const auto& [name, values] : faceAttributes) {
+    PIXELCLOTH_CHECK(values.rows() == F.rows(), context << ": face attribute '" << name << "' has " << values.rows()
+                                                        << " rows, expected " << F.rows());
+  }
+}
+
+Eigen::MatrixX3d faceNormals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
+  Eigen::MatrixX3d N(F.rows(), 3);
+  for (int f = 0; f < F.rows(); ++f) {
+    Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    Eigen::Vector3d n = (b - a).cross(c - a);
+    double len = n.norm();
+    N.row(f) = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+  }
+  return N;
+}
+
+Eigen::MatrixX3d vertexNormals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
+  Eigen::MatrixX3d N = Eigen::MatrixX3d::Zero(V.rows(), 3);
+  for (int f = 0; f < F.rows(); ++f) {
+    Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    Eigen::Vector3d n = (b - a).cross(c - a);  // length = twice the area: area weighting
+    for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n.transpose();
+  }
+  for (int i = 0; i < N.rows(); ++i) {
+    double len = N.row(i).norm();
+    if (len > 0) N.row(i) /= len;
+  }
+  return N;
+}
+
+TopologyReport checkTopology(int numVertices, const Eigen::MatrixX3i& F) {
+  TopologyReport report;
+  auto note = [&](const std::string& problem) {
+    if (report.firstProblem.empty()) report.firstProblem = problem;
+  };
+  // Directed half-edges keyed by (from, to).
+  std::unordered_map<std::uint64_t, int> directed;
+  auto key = [](int a, int b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b); };
+  directed.reserve(F.rows() * 3);
+  for (int f = 0; f < F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) ++directed[key(F(f, k), F(f, (k + 1) % 3))];
+  }
+  for (const auto& [k, count] : directed) {
+    int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffffu);
+    auto reverse = directed.find(key(b, a));
+    int back = reverse == directed.end() ? 0 : reverse->second;
+    if (count > 1) {
+      ++report.inconsistentEdges;
+      note("edge (" + std::to_string(a) + ", " + std::to_string(b) + ") is used " + std::to_string(count) +
+           " times in the same direction");
+    }
+    if (a < b || back == 0) {
+      int uses = count + back;
+      if (uses == 1) {
+        ++report.boundaryEdges;
+        note("edge (" + std::to_string(a) + ", " + std::to_string(b) + ") is on a boundary (used by one face)");
+      } else if (uses > 2) {
+        ++report.nonManifoldEdges;
+        note("edge (" + std::to_string(std::min(a, b)) + ", " + std::to_string(std::max(a, b)) + ") is shared by " +
+             std::to_string(uses) + " faces");
+      }
+    }
+  }
+  // Vertex fans: the faces around a vertex must be connected through shared edges.
+  std::vector<std::vector<int>> vertexFaces(numVertices);
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) vertexFaces[F(f, k)].push_back(f);
+  for (int v = 0; v < numVertices; ++v) {
+    const auto& faces = vertexFaces[v];
+    if (faces.empty()) {
+      ++report.isolatedVertices;
+      continue;
+    }
+    // Union faces of the fan that share an edge through v.
+    std::vector<int> parent(faces.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    std::function<int(int)> find = [&](int i) { return parent[i] == i ? i : parent[i] = find(parent[i]); };
+    std::unordered_map<int, int> firstFaceOfNeighbour;
+    for (size_t i = 0; i < faces.size(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        int w = F(faces[i], k);
+        if (w == v) continue;
+        auto [it, inserted] = firstFaceOfNeighbour.emplace(w, static_cast<int>(i));
+        if (!inserted) parent[find(static_cast<int>(i))] = find(it->second);
+      }
+    }
+    int roots = 0;
+    for (size_t i = 0; i < faces.size(); ++i) roots += find(static_cast<int>(i)) == static_cast<int>(i);
+    if (roots > 1) {
+      ++report.nonManifoldVertices;
+      note("vertex " + std::to_string(v) + " joins " + std::to_string(roots) + " separate fans of faces");
+    }
+  }
+  // Connected components of faces through shared vertices.
+  std::vector<int> parent(F.rows());
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<int(int)> find = [&](int i) { return parent[i] == i ? i : parent[i] = find(parent[i]); };
+  for (const auto& faces : vertexFaces)
+    for (size_t i = 1; i < faces.size(); ++i) parent[find(faces[i])] = find(faces[0]);
+  for (int f = 0; f < F.rows(); ++f) report.components += find(f) == f;
+  return report;
+}
+
+double enclosedVolume(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
+  double volume = 0;
+  for (int f = 0; f < F.rows(); ++f) {
+    Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    volume += a.dot(b.cross(c)) / 6.0;
+  }
+  return volume;
+}
+
+}  // namespace pixelcloth::core

@@ -1,0 +1,126 @@
+// Errors, atomic writes, progress, PNG pictures and topology checks: the support every module uses.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/error.h"
+#include "pixelcloth/core/image.h"
+#include "pixelcloth/core/mesh.h"
+#include "pixelcloth/core/progress.h"
+#include "test_util.h"
+
+namespace pc = pixelcloth::core;
+namespace fs = std::filesystem;
+
+TEST(Error, CheckThrowsInputErrorWithMessageAndLocation) {
+  try {
+    int found = 7;
+    PIXELCLOTH_CHECK(found == 3, "thing.obj: expected 3, found " << found);
+    FAIL() << "no exception";
+  } catch (const pc::InputError& e) {
+    EXPECT_STREQ(e.what(), "thing.obj: expected 3, found 7");
+    EXPECT_NE(e.where().find("support_test.cpp:"), std::string::npos);
+  }
+}
+
+TEST(AtomicFile, FailedWriterLeavesNothingBehind) {
+  fs::path dir = pixelcloth::testing::freshDir("atomic");
+  fs::path target = dir / "out.txt";
+  EXPECT_THROW(pc::writeAtomically(target,
+                                   [](const fs::path& tmp) {
+                                     std::ofstream(tmp) << "half";
+                                     throw pc::InputError("boom");
+                                   }),
+               pc::InputError);
+  EXPECT_FALSE(fs::exists(target));
+  EXPECT_TRUE(fs::is_empty(dir));
+  pc::writeTextAtomically(target, "whole");
+  EXPECT_EQ(pc::readTextFile(target), "whole");
+  EXPECT_TRUE(fs::exists(target));
+}
+
+TEST(AtomicFile, MissingFileIsNamed) {
+  try {
+    pc::readTextFile("/nonexistent/dir/file.json");
+    FAIL();
+  } catch (const pc::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/file.json: no such file"), std::string::npos);
+  }
+}
+
+TEST(AtomicFile, OutputFolderThatIsAFileIsRefused) {
+  fs::path dir = pixelcloth::testing::freshDir("outfolder");
+  pc::writeTextAtomically(dir / "file", "x");
+  EXPECT_THROW(pc::ensureOutputFolder(dir / "file"), pc::InputError);
+}
+
+TEST(Progress, LineShowsCountRateAndEta) {
+  pc::Progress progress("simulate", 10);
+  progress.advance(4);
+  std::string line = progress.line();
+  EXPECT_NE(line.find("simulate"), std::string::npos);
+  EXPECT_NE(line.find("4/10"), std::string::npos);
+  EXPECT_NE(line.find("40%"), std::string::npos);
+  EXPECT_NE(line.find("/s"), std::string::npos);
+  EXPECT_NE(line.find("ETA"), std::string::npos);
+  EXPECT_EQ(pc::formatDuration(75), "1:15");
+  EXPECT_EQ(pc::formatDuration(3725), "1:02:05");
+}
+
+TEST(Png, RoundTripAndCorruption) {
+  fs::path dir = pixelcloth::testing::freshDir("png");
+  pc::RgbImage image(37, 21, {10, 20, 30});
+  pc::fillTriangle(image, {2, 2}, {30, 4}, {10, 18}, {250, 0, 0});
+  pc::drawLine(image, {0, 20}, {36, 0}, {0, 0, 255}, 2.0);
+  pc::writePng(dir / "a.png", image);
+  pc::RgbImage back = pc::readPng(dir / "a.png");
+  ASSERT_EQ(back.width, 37);
+  ASSERT_EQ(back.height, 21);
+  EXPECT_EQ(back.pixels, image.pixels);
+  // A truncated file is reported, not half-read.
+  std::string bytes = pc::readTextFile(dir / "a.png");
+  pc::writeTextAtomically(dir / "cut.png", bytes.substr(0, bytes.size() / 2));
+  EXPECT_THROW(pc::readPng(dir / "cut.png"), pc::InputError);
+  pc::writeTextAtomically(dir / "text.png", "hello, not a png");
+  EXPECT_THROW(pc::readPng(dir / "text.png"), pc::InputError);
+}
+
+TEST(Topology, ClosedTetrahedronAndItsFaults) {
+  Eigen::MatrixX3d V(4, 3);
+  V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  Eigen::MatrixX3i F(4, 3);
+  F << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  pc::TopologyReport closed = pc::checkTopology(4, F);
+  EXPECT_TRUE(closed.closedManifold()) << closed.firstProblem;
+  EXPECT_EQ(closed.components, 1);
+  EXPECT_NEAR(pc::enclosedVolume(V, F), 1.0 / 6.0, 1e-12);
+
+  pc::TopologyReport open = pc::checkTopology(4, F.topRows(3));
+  EXPECT_FALSE(open.closedManifold());
+  EXPECT_EQ(open.boundaryEdges, 3);
+  EXPECT_NE(open.firstProblem.find("boundary"), std::string::npos);
+
+  Eigen::MatrixX3i flipped = F;
+  std::swap(flipped(0, 1), flipped(0, 2));
+  EXPECT_GT(pc::checkTopology(4, flipped).inconsistentEdges, 0);
+}
+
+TEST(Mesh, ValidateNamesTheFault) {
+  pc::Mesh mesh;
+  mesh.V = Eigen::MatrixX3d::Zero(3, 3);
+  mesh.V(1, 0) = 1;
+  mesh.V(2, 1) = 1;
+  mesh.F.resize(1, 3);
+  mesh.F << 0, 1, 5;
+  try {
+    mesh.validate("garment.obj");
+    FAIL();
+  } catch (const pc::InputError& e) {
+    EXPECT_STREQ(e.what(), "garment.obj: face 0 uses vertex 5, but the mesh has 3 vertices");
+  }
+  mesh.F << 0, 1, 2;
+  mesh.V(2, 2) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(mesh.validate("x"), pc::InputError);
+}

@@ -38,6 +38,10 @@ void RgbImage::blend(int x, int y, Color color, double alpha) {
 }
 
 namespace {
+// libpng reports through these; our own messages (with the file name) replace its stderr output.
+void pngError(png_structp png, png_const_charp) { png_longjmp(png, 1); }
+void pngWarning(png_structp, png_const_charp) {}
+
 struct FileCloser {
   void operator()(std::FILE* f) const {
     if (f) std::fclose(f);
@@ -52,7 +56,7 @@ void writePng(const std::filesystem::path& path, const RgbImage& image) {
   writeAtomically(path, [&](const std::filesystem::path& temporary) {
     std::unique_ptr<std::FILE, FileCloser> file(std::fopen(temporary.c_str(), "wb"));
     PIXELCLOTH_CHECK(file, path.string() << ": cannot open for writing");
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, pngError, pngWarning);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     PIXELCLOTH_CHECK(png && info, path.string() << ": libpng could not start");
     if (setjmp(png_jmpbuf(png))) {
@@ -76,7 +80,7 @@ RgbImage readPng(const std::filesystem::path& path) {
   png_byte signature[8] = {};
   PIXELCLOTH_CHECK(std::fread(signature, 1, 8, file.get()) == 8 && png_sig_cmp(signature, 0, 8) == 0,
                    path.string() << ": not a PNG file (bad signature)");
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, pngError, pngWarning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   PIXELCLOTH_CHECK(png && info, path.string() << ": libpng could not start");
   RgbImage image;

@@ -22,8 +22,8 @@ namespace pixelcloth::core {
 ///   use the file's own numbering (faces and vertices from 1, as written) and give the line.
 /// - PLY / OFF carry positions and triangles only: no texture coordinates.
 /// - `vertexAttributes` and `faceAttributes` never go through files (they come back empty).
-/// - Positions and texture coordinates pass through OpenMesh's readers and writers as 32-bit floats
-///   (about 0.1 micrometre at 1 m).
+/// - Positions pass through OpenMesh's readers and writers as 32-bit floats (about 0.1 micrometre at 1 m); OBJ
+///   texture coordinates are read in double precision and written as floats.
 Mesh readMesh(const std::filesystem::path& path);
 
 /// Writes `mesh` (validated first) as .obj, .ply (binary little-endian) or .off, chosen by the extension

@@ -64,9 +64,10 @@ const std::string& numpyPython() {
   return found;
 }
 
-// Runs a Python snippet and returns its stdout; `file` is passed as sys.argv[1].
+// Runs a Python snippet and returns its stdout and stderr; `file` (a file or the test's folder) is sys.argv[1].
 std::string runPython(const std::string& code, const fs::path& file) {
-  const fs::path script = file.parent_path() / "check.py";
+  const fs::path script =
+      (fs::is_directory(file) ? file : file.parent_path()) / "check.py";  // inside the test's folder
   std::ofstream(script) << code;
   std::string command = numpyPython() + " '" + script.string() + "' '" + file.string() + "' 2>&1";
   std::string output;

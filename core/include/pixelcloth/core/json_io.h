@@ -1,0 +1,52 @@
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <type_traits>
+
+#include "pixelcloth/core/error.h"
+
+namespace pixelcloth::core {
+
+/// Reads and parses a JSON file. Throws `InputError` naming the file for a missing file and, for a syntax error,
+/// giving its line, column and byte offset ("manifest.json: invalid JSON at line 3, column 7 (byte 25): ...").
+nlohmann::json readJson(const std::filesystem::path& path);
+
+/// Writes `value` as JSON text (pretty-printed with `indent` spaces, compact when negative) followed by a newline,
+/// atomically (temporary name, then rename).
+void writeJson(const std::filesystem::path& path, const nlohmann::json& value, int indent = 2);
+
+/// `object[key]`; throws `InputError` "<context>: missing field 'key'" when it is absent, or
+/// "<context>: expected a JSON object, found array" when `object` is not an object. `context` names the file and the
+/// enclosing object, e.g. "manifest.json: splits".
+const nlohmann::json& requireField(const nlohmann::json& object, const std::string& key, const std::string& context);
+
+namespace detail {
+template <typename T>
+const char* jsonKindOf() {
+  if constexpr (std::is_same_v<T, bool>) return "true or false";
+  if constexpr (std::is_arithmetic_v<T>) return std::is_integral_v<T> ? "an integer" : "a number";
+  if constexpr (std::is_convertible_v<T, std::string>) return "a string";
+  return "a value of another type";
+}
+}  // namespace detail
+
+/// `object[key]` converted to T (a number, bool, string, or anything nlohmann::json converts to); throws
+/// `InputError` "<context>: missing field 'key'" or "<context>: field 'key' is a string, expected a number".
+template <typename T>
+T requireValue(const nlohmann::json& object, const std::string& key, const std::string& context) {
+  const nlohmann::json& field = requireField(object, key, context);
+  const bool integerWanted = std::is_integral_v<T> && !std::is_same_v<T, bool>;
+  PIXELCLOTH_CHECK(!integerWanted || field.is_number_integer(),
+                   context << ": field '" << key << "' is " << (field.is_number() ? "" : "a ") << field.type_name()
+                           << " " << field.dump() << ", expected " << detail::jsonKindOf<T>());
+  try {
+    return field.get<T>();
+  } catch (const nlohmann::json::exception&) {
+    PIXELCLOTH_FAIL(context << ": field '" << key << "' is " << field.type_name() << ", expected "
+                            << detail::jsonKindOf<T>());
+  }
+}
+
+}  // namespace pixelcloth::core

@@ -1,0 +1,46 @@
+#include "pixelcloth/core/json_io.h"
+
+#include <algorithm>
+
+#include "pixelcloth/core/atomic_file.h"
+
+namespace pixelcloth::core {
+
+namespace fs = std::filesystem;
+
+nlohmann::json readJson(const fs::path& path) {
+  const std::string text = readTextFile(path);
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.byte is 1-based and points just past the offending character.
+    const size_t end = std::min(e.byte > 0 ? e.byte - 1 : 0, text.size());
+    const size_t line = 1 + std::count(text.begin(), text.begin() + end, '\n');
+    const size_t lineStart = text.rfind('\n', end == 0 ? 0 : end - 1);
+    const size_t column = lineStart == std::string::npos || end == 0 ? end + 1 : end - lineStart;
+    std::string reason = e.what();
+    const size_t colon = reason.find(": ");  // drop nlohmann's "[json.exception.parse_error.101] parse error at ..."
+    if (colon != std::string::npos) reason = reason.substr(colon + 2);
+    PIXELCLOTH_FAIL(path.string() << ": invalid JSON at line " << line << ", column " << column << " (byte " << e.byte
+                                  << "): " << reason);
+  }
+}
+
+void writeJson(const fs::path& path, const nlohmann::json& value, int indent) {
+  std::string text;
+  try {
+    text = value.dump(indent) + "\n";
+  } catch (const nlohmann::json::type_error& e) {  // e.g. a string that is not valid UTF-8
+    PIXELCLOTH_FAIL(path.string() << ": cannot write the JSON value (" << e.what() << ")");
+  }
+  writeTextAtomically(path, text);
+}
+
+const nlohmann::json& requireField(const nlohmann::json& object, const std::string& key, const std::string& context) {
+  PIXELCLOTH_CHECK(object.is_object(), context << ": expected a JSON object, found " << object.type_name());
+  auto it = object.find(key);
+  PIXELCLOTH_CHECK(it != object.end(), context << ": missing field '" << key << "'");
+  return *it;
+}
+
+}  // namespace pixelcloth::core

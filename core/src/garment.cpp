@@ -1,0 +1,483 @@
+// Shared part of the garment templates: the flat-pattern mesher (CGAL), seam matching across layouts, merging into one
+// mesh, queries on Garment, and the pattern picture.
+#include "pixelcloth/core/garment.h"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesh_vertex_base_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_set>
+
+#include "garment_pattern.h"
+#include "pixelcloth/core/error.h"
+
+namespace pixelcloth::core {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using MeshVertexBase = CGAL::Delaunay_mesh_vertex_base_2<Kernel>;
+using MeshFaceBase = CGAL::Delaunay_mesh_face_base_2<Kernel>;
+using Tds = CGAL::Triangulation_data_structure_2<MeshVertexBase, MeshFaceBase>;
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds>;
+using SizeCriteria = CGAL::Delaunay_mesh_size_criteria_2<Cdt>;
+using VertexHandle = Cdt::Vertex_handle;
+
+/// Shape bound B of the mesher: sin^2 of the smallest angle, 0.125 <=> 20.7 degrees (the largest bound for which
+/// Ruppert's refinement is guaranteed to terminate).
+constexpr double kShapeBound = 0.125;
+/// Two arc-length fractions closer than this are the same seam point.
+constexpr double kParamTolerance = 1e-9;
+constexpr int kMaxStitchRounds = 20;
+constexpr int kMaxSizeTrials = 8;
+/// Relative tolerance on the vertex count: stop searching the edge-length bound once within it.
+constexpr double kVertexCountTolerance = 0.02;
+
+std::uint64_t edgeKey(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+}
+
+/// The triangulation of one layout, before merging.
+struct LayoutMesh {
+  Eigen::MatrixX2d UV;                      // #v x 2 layout coordinates
+  Eigen::MatrixX3i F;                       // counter-clockwise in UV
+  std::vector<std::vector<int>> chains;     // per curve: vertices from t = 0 to t = 1 (empty if not in the layout)
+  std::vector<std::vector<double>> params;  // per curve: arc-length fractions of those vertices
+};
+
+Eigen::Vector2d toEigen(const Kernel::Point_2& p) { return {CGAL::to_double(p.x()), CGAL::to_double(p.y())}; }
+
+/// Triangulates one layout with the curves sampled at `samples[curve]` as constraints, refined to the size bound,
+/// and reads back each curve's vertex chain (the mesher may have split constrained edges).
+LayoutMesh meshLayout(const std::vector<pattern::Curve>& curves, const pattern::Layout& layout,
+                      const std::vector<std::vector<double>>& samples, double maxEdge) {
+  Cdt cdt;
+  const double sign = layout.mirrored ? -1.0 : 1.0;
+  std::vector<std::vector<VertexHandle>> handles(curves.size());
+  for (int c : layout.curves) {
+    for (double t : samples[c]) {
+      Eigen::Vector2d xy = curves[c].at(t);
+      handles[c].push_back(cdt.insert(Kernel::Point_2(sign * xy.x(), xy.y())));
+    }
+    for (size_t i = 0; i + 1 < handles[c].size(); ++i) cdt.insert_constraint(handles[c][i], handles[c][i + 1]);
+  }
+  CGAL::refine_Delaunay_mesh_2(cdt, SizeCriteria(kShapeBound, maxEdge));
+
+  LayoutMesh mesh;
+  std::map<VertexHandle, int> index;
+  std::vector<Eigen::Vector2d> points;
+  std::vector<Eigen::Vector3i> faces;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    if (!f->is_in_domain()) continue;
+    Eigen::Vector3i face;
+    for (int k = 0; k < 3; ++k) {
+      auto [it, inserted] = index.emplace(f->vertex(k), static_cast<int>(points.size()));
+      if (inserted) points.push_back(toEigen(f->vertex(k)->point()));
+      face[k] = it->second;
+    }
+    faces.push_back(face);
+  }
+  mesh.UV.resize(static_cast<int>(points.size()), 2);
+  for (size_t i = 0; i < points.size(); ++i) mesh.UV.row(i) = points[i].transpose();
+  mesh.F.resize(static_cast<int>(faces.size()), 3);
+  for (size_t i = 0; i < faces.size(); ++i) mesh.F.row(i) = faces[i].transpose();
+
+  // Walk each curve's constrained sub-edges from sample to sample: they are collinear with the sample segment.
+  mesh.chains.resize(curves.size());
+  mesh.params.resize(curves.size());
+  for (int c : layout.curves) {
+    auto& chain = mesh.chains[c];
+    auto& params = mesh.params[c];
+    auto indexOf = [&](VertexHandle v) {
+      auto it = index.find(v);
+      if (it == index.end()) throw std::logic_error("garment mesher: curve '" + curves[c].name + "' left the domain");
+      return it->second;
+    };
+    chain.push_back(indexOf(handles[c][0]));
+    params.push_back(samples[c][0]);
+    for (size_t i = 0; i + 1 < handles[c].size(); ++i) {
+      VertexHandle from = handles[c][i], to = handles[c][i + 1];
+      Eigen::Vector2d a = toEigen(from->point()), b = toEigen(to->point());
+      double segmentLength = (b - a).norm();
+      Eigen::Vector2d direction = (b - a) / segmentLength;
+      VertexHandle current = from;
+      for (int steps = 0; current != to; ++steps) {
+        if (steps > 100000) throw std::logic_error("garment mesher: lost along curve '" + curves[c].name + "'");
+        VertexHandle next;
+        double best = -2;
+        Cdt::Edge_circulator edge = cdt.incident_edges(current), done = edge;
+        do {
+          if (cdt.is_infinite(*edge) || !cdt.is_constrained(*edge)) continue;
+          VertexHandle p = edge->first->vertex(Cdt::cw(edge->second));
+          VertexHandle q = edge->first->vertex(Cdt::ccw(edge->second));
+          VertexHandle other = p == current ? q : p;
+          double score = (toEigen(other->point()) - toEigen(current->point())).normalized().dot(direction);
+          if (score > best) best = score, next = other;
+        } while (++edge != done);
+        if (best < 1 - 1e-6) {
+          throw std::logic_error("garment mesher: no constrained edge continues curve '" + curves[c].name + "'");
+        }
+        current = next;
+        chain.push_back(indexOf(current));
+        double fraction = current == to ? 1.0 : (toEigen(current->point()) - a).norm() / segmentLength;
+        params.push_back(samples[c][i] + (samples[c][i + 1] - samples[c][i]) * fraction);
+      }
+    }
+  }
+  return mesh;
+}
+
+/// Sorted union of two sorted parameter lists, points closer than kParamTolerance merged.
+std::vector<double> unionParams(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> all(a);
+  all.insert(all.end(), b.begin(), b.end());
+  std::sort(all.begin(), all.end());
+  std::vector<double> result;
+  for (double t : all) {
+    if (result.empty() || t - result.back() > kParamTolerance) result.push_back(t);
+  }
+  result.front() = 0.0;
+  result.back() = 1.0;
+  return result;
+}
+
+/// Meshes all layouts at one size bound until every stitched curve has the same samples in every layout: after each
+/// round the samples of a stitched curve become the union of what all layouts ended with (the mesher splits
+/// encroached constrained edges differently in each layout), and all layouts are meshed again.
+std::vector<LayoutMesh> meshStitched(const std::vector<pattern::Curve>& curves,
+                                     const std::vector<pattern::Layout>& layouts, double maxEdge, double spacing,
+                                     int& rounds) {
+  std::vector<std::vector<std::vector<double>>> samples(layouts.size(),
+                                                        std::vector<std::vector<double>>(curves.size()));
+  for (size_t l = 0; l < layouts.size(); ++l) {
+    for (int c : layouts[l].curves) {
+      int n = std::max(1, static_cast<int>(std::ceil(curves[c].length() / spacing - 1e-9)));
+      for (int k = 0; k <= n; ++k) samples[l][c].push_back(k == n ? 1.0 : static_cast<double>(k) / n);
+    }
+  }
+  for (rounds = 1; rounds <= kMaxStitchRounds; ++rounds) {
+    std::vector<LayoutMesh> meshes;
+    for (size_t l = 0; l < layouts.size(); ++l) meshes.push_back(meshLayout(curves, layouts[l], samples[l], maxEdge));
+    bool agree = true;
+    for (size_t c = 0; c < curves.size(); ++c) {
+      if (!curves[c].stitched) {
+        for (size_t l = 0; l < layouts.size(); ++l) samples[l][c] = meshes[l].params[c];
+        continue;
+      }
+      std::vector<double> merged;
+      for (size_t l = 0; l < layouts.size(); ++l)
+        merged = merged.empty() ? meshes[l].params[c] : unionParams(merged, meshes[l].params[c]);
+      for (size_t l = 0; l < layouts.size(); ++l) {
+        if (meshes[l].params[c].size() != merged.size()) agree = false;
+        samples[l][c] = merged;
+      }
+    }
+    if (agree) return meshes;
+  }
+  throw std::logic_error("garment mesher: stitched seams did not agree after " + std::to_string(kMaxStitchRounds) +
+                         " rounds");
+}
+
+/// One mesh from the layouts: a vertex on a stitched curve becomes one vertex with one UV per layout.
+pattern::MergedPattern merge(const std::vector<pattern::Curve>& curves, const std::vector<pattern::Layout>& layouts,
+                             const std::vector<LayoutMesh>& meshes) {
+  const int numLayouts = static_cast<int>(layouts.size());
+  std::vector<std::vector<int>> global(numLayouts);
+  std::vector<Eigen::Vector2d> xy;
+  for (int l = 0; l < numLayouts; ++l) {
+    global[l].assign(meshes[l].UV.rows(), -1);
+    for (size_t c = 0; c < curves.size(); ++c) {
+      if (!curves[c].stitched || meshes[l].chains[c].empty()) continue;
+      int reference = 0;
+      while (meshes[reference].chains[c].empty()) ++reference;
+      if (reference == l) continue;
+      const auto& mine = meshes[l].chains[c];
+      const auto& theirs = meshes[reference].chains[c];
+      if (mine.size() != theirs.size()) throw std::logic_error("garment mesher: seam '" + curves[c].name + "' differs");
+      for (size_t k = 0; k < mine.size(); ++k) {
+        int g = global[reference][theirs[k]];
+        if (global[l][mine[k]] != -1 && global[l][mine[k]] != g) {
+          throw std::logic_error("garment mesher: seam '" + curves[c].name + "' joins two different vertices");
+        }
+        global[l][mine[k]] = g;
+      }
+    }
+    const double sign = layouts[l].mirrored ? -1.0 : 1.0;
+    for (int v = 0; v < meshes[l].UV.rows(); ++v) {
+      if (global[l][v] != -1) continue;
+      global[l][v] = static_cast<int>(xy.size());
+      xy.emplace_back(sign * meshes[l].UV(v, 0), meshes[l].UV(v, 1));
+    }
+  }
+  pattern::MergedPattern merged;
+  const int numVertices = static_cast<int>(xy.size());
+  merged.XY.resize(numVertices, 2);
+  for (int v = 0; v < numVertices; ++v) merged.XY.row(v) = xy[v].transpose();
+  int numUV = 0, numFaces = 0;
+  for (const auto& mesh : meshes)
+    numUV += static_cast<int>(mesh.UV.rows()), numFaces += static_cast<int>(mesh.F.rows());
+  merged.UV.resize(numUV, 2);
+  merged.F.resize(numFaces, 3);
+  merged.FUV.resize(numFaces, 3);
+  merged.faceLayout.resize(numFaces);
+  merged.vertexUV = Eigen::MatrixXi::Constant(numVertices, numLayouts, -1);
+  merged.chains.assign(numLayouts, std::vector<std::vector<int>>(curves.size()));
+  int uvOffset = 0, faceOffset = 0;
+  for (int l = 0; l < numLayouts; ++l) {
+    const LayoutMesh& mesh = meshes[l];
+    merged.UV.middleRows(uvOffset, mesh.UV.rows()) = mesh.UV;
+    for (int v = 0; v < mesh.UV.rows(); ++v) merged.vertexUV(global[l][v], l) = uvOffset + v;
+    for (int f = 0; f < mesh.F.rows(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        merged.F(faceOffset + f, k) = global[l][mesh.F(f, k)];
+        merged.FUV(faceOffset + f, k) = uvOffset + mesh.F(f, k);
+      }
+      merged.faceLayout[faceOffset + f] = l;
+    }
+    for (size_t c = 0; c < curves.size(); ++c) {
+      for (int v : mesh.chains[c]) merged.chains[l][c].push_back(global[l][v]);
+    }
+    uvOffset += static_cast<int>(mesh.UV.rows());
+    faceOffset += static_cast<int>(mesh.F.rows());
+  }
+  return merged;
+}
+
+/// Colour of the i-th seam: the categorical palette without its grey (too close to the triangle edges) and its two
+/// pale colours (invisible on the tinted panels), completed by darker blue, green and red.
+Color seamColor(int i) {
+  const int k = i % 12;
+  if (k < 7) return paletteColor(k);
+  if (k < 9) return paletteColor(k + 1);
+  static const int kDarkened[] = {0, 2, 3};
+  Color c = paletteColor(kDarkened[k - 9]);
+  for (auto& channel : c) channel = static_cast<std::uint8_t>(channel / 2);
+  return c;
+}
+
+}  // namespace
+
+namespace pattern {
+
+double Curve::length() const {
+  double total = 0;
+  for (size_t i = 0; i + 1 < points.size(); ++i) total += (points[i + 1] - points[i]).norm();
+  return total;
+}
+
+Eigen::Vector2d Curve::at(double t) const {
+  if (t <= 0) return points.front();
+  if (t >= 1) return points.back();
+  double target = t * length(), walked = 0;
+  for (size_t i = 0; i + 1 < points.size(); ++i) {
+    double piece = (points[i + 1] - points[i]).norm();
+    if (walked + piece >= target && piece > 0)
+      return points[i] + (target - walked) / piece * (points[i + 1] - points[i]);
+    walked += piece;
+  }
+  return points.back();
+}
+
+Curve straightCurve(const std::string& name, const Eigen::Vector2d& a, const Eigen::Vector2d& b, bool stitched) {
+  return Curve{name, {a, b}, stitched};
+}
+
+MergedPattern meshPattern(const std::vector<Curve>& curves, const std::vector<Layout>& layouts, int targetVertices,
+                          double area, double boundarySpacing) {
+  // Vertex count ~ 2 area / bound^2 for the meshes Ruppert's refinement produces; refined by trials assuming
+  // count ~ 1 / bound^2, and by bisection (in log scale) once the target is bracketed: the count is only roughly
+  // monotone in the bound.
+  double maxEdge = std::sqrt(2.0 * area / targetVertices);
+  double tooFine = 0, tooCoarse = 0;  // bounds known to give too many / too few vertices (0: none yet)
+  MergedPattern best;
+  int bestMiss = -1, trials = 0;
+  while (trials < kMaxSizeTrials) {
+    ++trials;
+    int rounds = 0;
+    std::vector<LayoutMesh> meshes = meshStitched(curves, layouts, maxEdge, boundarySpacing * maxEdge, rounds);
+    MergedPattern merged = merge(curves, layouts, meshes);
+    merged.stats.stitchRounds = rounds;
+    merged.stats.maxEdgeLength = maxEdge;
+    const int count = static_cast<int>(merged.XY.rows());
+    const int miss = std::abs(count - targetVertices);
+    if (bestMiss < 0 || miss < bestMiss) best = std::move(merged), bestMiss = miss;
+    if (miss <= kVertexCountTolerance * targetVertices) break;
+    (count > targetVertices ? tooFine : tooCoarse) = maxEdge;
+    maxEdge = tooFine > 0 && tooCoarse > 0 ? std::sqrt(tooFine * tooCoarse)
+                                           : maxEdge * std::sqrt(static_cast<double>(count) / targetVertices);
+  }
+  best.stats.sizeTrials = trials;
+  best.stats.minAngleDegrees = minAngleDegrees(best.UV, best.FUV);
+  return best;
+}
+
+std::vector<std::vector<int>> boundaryLoops(int numVertices, const Eigen::MatrixX3i& F) {
+  std::unordered_set<std::uint64_t> directed;
+  auto key = [](int a, int b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b); };
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) directed.insert(key(F(f, k), F(f, (k + 1) % 3)));
+  std::vector<int> next(numVertices, -1);
+  for (int f = 0; f < F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      int a = F(f, k), b = F(f, (k + 1) % 3);
+      if (directed.count(key(b, a))) continue;
+      if (next[a] != -1) throw std::logic_error("boundaryLoops: vertex " + std::to_string(a) + " is on two boundaries");
+      next[a] = b;
+    }
+  }
+  std::vector<std::vector<int>> loops;
+  std::vector<bool> seen(numVertices, false);
+  for (int start = 0; start < numVertices; ++start) {
+    if (next[start] == -1 || seen[start]) continue;
+    std::vector<int> loop;
+    for (int v = start; !seen[v]; v = next[v]) {
+      if (next[v] == -1) throw std::logic_error("boundaryLoops: boundary ends at vertex " + std::to_string(v));
+      seen[v] = true;
+      loop.push_back(v);
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+double minAngleDegrees(const Eigen::MatrixX2d& UV, const Eigen::MatrixX3i& FUV) {
+  double smallest = 180;
+  for (int f = 0; f < FUV.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      Eigen::Vector2d p = UV.row(FUV(f, k)), a = UV.row(FUV(f, (k + 1) % 3)), b = UV.row(FUV(f, (k + 2) % 3));
+      Eigen::Vector2d u = a - p, w = b - p;
+      double angle = std::atan2(std::abs(u.x() * w.y() - u.y() * w.x()), u.dot(w));
+      smallest = std::min(smallest, angle * 180.0 / M_PI);
+    }
+  }
+  return smallest;
+}
+
+}  // namespace pattern
+
+std::string PatternMeshingStats::summary(int numVertices) const {
+  std::ostringstream out;
+  out << std::fixed << numVertices << " vertices, min angle " << std::setprecision(1) << minAngleDegrees << " deg, "
+      << stitchRounds << " stitch rounds, " << sizeTrials << " size trials, " << std::setprecision(3) << seconds
+      << " s";
+  return out.str();
+}
+
+int Garment::layoutIndex(const std::string& layoutName) const {
+  for (size_t l = 0; l < layouts.size(); ++l)
+    if (layouts[l] == layoutName) return static_cast<int>(l);
+  std::string known;
+  for (const auto& l : layouts) known += (known.empty() ? "" : ", ") + l;
+  PIXELCLOTH_FAIL(name << ": no layout '" << layoutName << "'; this garment has: " << known);
+}
+
+Eigen::AlignedBox2d Garment::layoutBounds(int layout) const {
+  PIXELCLOTH_CHECK(layout >= 0 && layout < numLayouts(),
+                   name << ": layout " << layout << " requested, but the garment has " << numLayouts());
+  Eigen::AlignedBox2d box;
+  for (int f = 0; f < mesh.FUV.rows(); ++f) {
+    if (faceLayout[f] != layout) continue;
+    for (int k = 0; k < 3; ++k) box.extend(Eigen::Vector2d(mesh.UV.row(mesh.FUV(f, k))));
+  }
+  return box;
+}
+
+double Garment::length() const { return layoutBounds(0).sizes().y(); }
+
+const Seam* Garment::findSeam(const std::string& seamName) const {
+  for (const auto& seam : seams)
+    if (seam.name == seamName) return &seam;
+  return nullptr;
+}
+
+std::string Garment::summary() const {
+  std::ostringstream out;
+  out << name << ": " << mesh.numVertices() << " vertices, " << mesh.numFaces() << " faces, layouts ";
+  for (size_t l = 0; l < layouts.size(); ++l) out << (l ? "+" : "") << layouts[l];
+  out << ", " << panels.size() << " panels, " << seams.size() << " seams, " << openings.size() << " openings";
+  return out.str();
+}
+
+RgbImage renderPattern(const Garment& garment, int pixelsPerMetre) {
+  PIXELCLOTH_CHECK(pixelsPerMetre >= 10 && pixelsPerMetre <= 10000,
+                   "renderPattern: pixelsPerMetre must be in [10, 10000], got " << pixelsPerMetre);
+  PIXELCLOTH_CHECK(garment.mesh.hasUV() && garment.faceLayout.size() == garment.mesh.numFaces() &&
+                       garment.facePanel.size() == garment.mesh.numFaces(),
+                   "renderPattern: garment '" << garment.name << "' lacks UVs or per-face layout / panel indices");
+  const double ppm = pixelsPerMetre, margin = 0.03, gap = 0.08;
+  const int numLayouts = garment.numLayouts();
+  std::vector<Eigen::AlignedBox2d> bounds;
+  double totalWidth = 2 * margin + gap * (numLayouts - 1), maxHeight = 0;
+  for (int l = 0; l < numLayouts; ++l) {
+    bounds.push_back(garment.layoutBounds(l));
+    totalWidth += bounds.back().sizes().x();
+    maxHeight = std::max(maxHeight, bounds.back().sizes().y());
+  }
+  const int width = static_cast<int>(std::ceil(totalWidth * ppm)),
+            height = static_cast<int>(std::ceil((maxHeight + 2 * margin) * ppm));
+  PIXELCLOTH_CHECK(static_cast<double>(width) * height <= 1e8,
+                   "renderPattern: a " << width << " x " << height << " picture is too large; lower pixelsPerMetre");
+  RgbImage image(width, height);
+  // Pixel position of a UV in layout l: layouts side by side, tops aligned, v up => rows down.
+  std::vector<double> left(numLayouts, margin);
+  for (int l = 1; l < numLayouts; ++l) left[l] = left[l - 1] + bounds[l - 1].sizes().x() + gap;
+  auto pixel = [&](int l, int uvRow) {
+    Eigen::Vector2d uv = garment.mesh.UV.row(uvRow);
+    return Eigen::Vector2d((left[l] + uv.x() - bounds[l].min().x()) * ppm,
+                           (margin + bounds[l].max().y() - uv.y()) * ppm);
+  };
+  const auto& F = garment.mesh.F;
+  const auto& FUV = garment.mesh.FUV;
+  auto mix = [](Color a, Color b, double t) {
+    Color c;
+    for (int i = 0; i < 3; ++i) c[i] = static_cast<std::uint8_t>(std::lround(a[i] * (1 - t) + b[i] * t));
+    return c;
+  };
+  for (int f = 0; f < F.rows(); ++f) {
+    int l = garment.faceLayout[f];
+    fillTriangle(image, pixel(l, FUV(f, 0)), pixel(l, FUV(f, 1)), pixel(l, FUV(f, 2)),
+                 mix({255, 255, 255}, paletteColor(garment.facePanel[f]), 0.22));
+  }
+  // Undirected edges of each layout (vertex pairs), drawn once; also used to find where a seam runs.
+  std::vector<std::unordered_set<std::uint64_t>> layoutEdges(numLayouts);
+  const double thin = std::max(1.0, ppm / 1500);
+  for (int f = 0; f < F.rows(); ++f) {
+    int l = garment.faceLayout[f];
+    for (int k = 0; k < 3; ++k) {
+      int j = (k + 1) % 3;
+      if (layoutEdges[l].insert(edgeKey(F(f, k), F(f, j))).second) {
+        drawLine(image, pixel(l, FUV(f, k)), pixel(l, FUV(f, j)), {165, 165, 165}, thin);
+      }
+    }
+  }
+  auto drawChain = [&](const std::vector<int>& chain, bool closed, Color color, double lineWidth) {
+    const size_t n = chain.size();
+    for (size_t i = 0; i + (closed ? 0 : 1) < n; ++i) {
+      int a = chain[i], b = chain[(i + 1) % n];
+      for (int l = 0; l < numLayouts; ++l) {
+        if (!layoutEdges[l].count(edgeKey(a, b))) continue;
+        int ua = garment.vertexUV(a, l), ub = garment.vertexUV(b, l);
+        if (ua >= 0 && ub >= 0) drawLine(image, pixel(l, ua), pixel(l, ub), color, lineWidth);
+      }
+    }
+  };
+  for (const auto& opening : garment.openings)
+    drawChain(opening.vertices, true, {40, 40, 40}, std::max(2.0, ppm / 400));
+  for (size_t s = 0; s < garment.seams.size(); ++s) {
+    drawChain(garment.seams[s].vertices, false, seamColor(static_cast<int>(s)), std::max(3.0, ppm / 250));
+  }
+  return image;
+}
+
+}  // namespace pixelcloth::core

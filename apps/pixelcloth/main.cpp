@@ -15,7 +15,11 @@ int main(int argc, char** argv) {
     pixelcloth::core::setLogLevel(quiet ? pixelcloth::core::LogLevel::Quiet : pixelcloth::core::LogLevel::Info);
   });
 
-  // VERBS
+  pixelcloth::apps::registerBody(app);
+  pixelcloth::apps::registerGarment(app);
+  pixelcloth::apps::registerPose(app);
+  pixelcloth::apps::registerDemo(app);
+  pixelcloth::apps::registerBench(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
 
   try {

@@ -2,11 +2,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <nlohmann/json.hpp>
 
-#include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/body.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 
 namespace pixelcloth::core {
@@ -48,13 +47,7 @@ Eigen::Vector3d extremeAlong(const Eigen::MatrixX3d& V, const Eigen::Vector3d& o
 }  // namespace
 
 JointPositions readJointPositions(const std::filesystem::path& path) {
-  std::string text = readTextFile(path);
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    PIXELCLOTH_FAIL(path.string() << ": not valid JSON (" << e.what() << ")");
-  }
+  nlohmann::json json = readJson(path);
   PIXELCLOTH_CHECK(json.is_object(), path.string() << ": expected a JSON object of joint positions");
   const nlohmann::json& joints = json.contains("joints") ? json["joints"] : json;
   PIXELCLOTH_CHECK(joints.is_object(), path.string() << ": 'joints' must be an object {name: [x, y, z]}");

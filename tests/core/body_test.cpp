@@ -372,7 +372,7 @@ TEST(Import, JointFileErrors) {
     }
   };
   expectMessage(dir / "missing.json", "no such file");
-  expectMessage(write("broken.json", "{\"joints\": {"), "not valid JSON");
+  expectMessage(write("broken.json", "{\"joints\": {"), "broken.json");
   expectMessage(write("unknown.json", "{\"joints\": {\"l_elbow\": [0, 1, 0]}}"), "unknown joint 'l_elbow'");
   expectMessage(write("short.json", "{\"joints\": {\"neck\": [0, 1]}}"), "[x, y, z]");
   expectMessage(write("partial.json", "{\"joints\": {\"neck\": [0, 1.5, 0]}}"), "missing joint 'lower_back'");

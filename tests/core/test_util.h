@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <string>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 namespace pixelcloth::testing {
@@ -11,7 +13,8 @@ namespace pixelcloth::testing {
 inline std::filesystem::path freshDir(const std::string& name) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::filesystem::path dir = std::filesystem::temp_directory_path() / "pixelcloth-tests" /
-                              (std::string(info->test_suite_name()) + "." + info->name() + "." + name);
+                              (std::string(info->test_suite_name()) + "." + info->name() + "." + name + "." +
+                               std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -122,5 +123,9 @@ Garment makeNecktie(const NecktieOptions& options = {});
 /// panel, triangle edges thin grey, seams thick, each seam in its own colour (the same on both layouts), openings
 /// dark. `pixelsPerMetre` of pattern space (10 to 10000).
 RgbImage renderPattern(const Garment& garment, int pixelsPerMetre = 1000);
+
+/// Writes a garment folder: garment.obj (positions, per-corner UVs as `vt`) and garment.json (layouts,
+/// panels, per-face layout and panel, seams and openings as vertex chains). Each file atomically.
+void saveGarment(const std::filesystem::path& folder, const Garment& garment);
 
 }  // namespace pixelcloth::core

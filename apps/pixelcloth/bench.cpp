@@ -1,0 +1,73 @@
+// pixelcloth bench: speed goals, one JSON object per line {"name", "value", "unit", "goal"}.
+// Lower is better for every figure; a goal is the largest value that meets it.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/body.h"
+#include "pixelcloth/core/garment.h"
+#include "pixelcloth/core/log.h"
+#include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/core/npy.h"
+#include "verbs.h"
+
+namespace pixelcloth::apps {
+
+namespace {
+using namespace pixelcloth::core;
+
+/// Median wall time of `repeats` runs of `work`, seconds.
+template <typename F>
+double medianSeconds(int repeats, F&& work) {
+  std::vector<double> times;
+  for (int i = 0; i < repeats; ++i) {
+    auto start = std::chrono::steady_clock::now();
+    work();
+    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
+void emit(const std::string& name, double value, const std::string& unit, double goal) {
+  std::cout << nlohmann::json{{"name", name}, {"value", value}, {"unit", unit}, {"goal", goal}}.dump() << std::endl;
+}
+
+void runBench(int repeats) {
+  Body body;
+  emit("body.mannequin_build", medianSeconds(1, [&] { body = makeMannequin(); }), "s", 10.0);
+  emit("body.bone_heat_weights", medianSeconds(repeats, [&] { boneHeatWeights(body.mesh.V, body.mesh.F, body.skeleton); }),
+       "s", 1.0);
+  Pose pose = randomPose(3);
+  emit("body.skin_14k_vertices", 1e3 * medianSeconds(repeats * 10, [&] { body.posedVertices(pose); }), "ms", 2.0);
+  emit("garment.tshirt_build", medianSeconds(repeats, [] { makeTShirt(); }), "s", 1.0);
+  emit("garment.necktie_build", medianSeconds(repeats, [] { makeNecktie(); }), "s", 0.2);
+
+  auto dir = std::filesystem::temp_directory_path() / ("pixelcloth-bench-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  emit("io.body_obj_write", 1e3 * medianSeconds(repeats, [&] { writeMesh(dir / "body.obj", body.mesh); }), "ms", 200.0);
+  emit("io.body_obj_read", 1e3 * medianSeconds(repeats, [&] { readMesh(dir / "body.obj"); }), "ms", 200.0);
+  Eigen::MatrixXf weights = body.weights.cast<float>();
+  emit("io.weights_npy_write", 1e3 * medianSeconds(repeats, [&] { writeNpy(dir / "w.npy", weights); }), "ms", 20.0);
+  emit("io.weights_npy_read", 1e3 * medianSeconds(repeats, [&] { readNpyMatrixF(dir / "w.npy"); }), "ms", 20.0);
+  std::filesystem::remove_all(dir);
+}
+}  // namespace
+
+void registerBench(CLI::App& app) {
+  auto repeats = std::make_shared<int>(5);
+  CLI::App* verb = app.add_subcommand("bench", "Measure the speed goals; prints one JSON object per line "
+                                               "{name, value, unit, goal} (lower is better)");
+  verb->add_option("--repeats", *repeats, "Runs per figure (the median is reported)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
+  verb->callback([repeats] { runBench(*repeats); });
+}
+
+}  // namespace pixelcloth::apps

@@ -36,14 +36,15 @@ double medianSeconds(int repeats, F&& work) {
 }
 
 void emit(const std::string& name, double value, const std::string& unit, double goal) {
-  std::cout << nlohmann::json{{"name", name}, {"value", value}, {"unit", unit}, {"goal", goal}}.dump() << std::endl;
+  std::cout << nlohmann::ordered_json{{"name", name}, {"value", value}, {"unit", unit}, {"goal", goal}}.dump()
+            << std::endl;
 }
 
 void runBench(int repeats) {
   Body body;
   emit("body.mannequin_build", medianSeconds(1, [&] { body = makeMannequin(); }), "s", 10.0);
-  emit("body.bone_heat_weights", medianSeconds(repeats, [&] { boneHeatWeights(body.mesh.V, body.mesh.F, body.skeleton); }),
-       "s", 1.0);
+  emit("body.bone_heat_weights",
+       medianSeconds(repeats, [&] { boneHeatWeights(body.mesh.V, body.mesh.F, body.skeleton); }), "s", 1.0);
   Pose pose = randomPose(3);
   emit("body.skin_14k_vertices", 1e3 * medianSeconds(repeats * 10, [&] { body.posedVertices(pose); }), "ms", 2.0);
   emit("garment.tshirt_build", medianSeconds(repeats, [] { makeTShirt(); }), "s", 1.0);
@@ -62,8 +63,9 @@ void runBench(int repeats) {
 
 void registerBench(CLI::App& app) {
   auto repeats = std::make_shared<int>(5);
-  CLI::App* verb = app.add_subcommand("bench", "Measure the speed goals; prints one JSON object per line "
-                                               "{name, value, unit, goal} (lower is better)");
+  CLI::App* verb = app.add_subcommand("bench",
+                                      "Measure the speed goals; prints one JSON object per line "
+                                      "{name, value, unit, goal} (lower is better)");
   verb->add_option("--repeats", *repeats, "Runs per figure (the median is reported)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));

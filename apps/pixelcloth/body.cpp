@@ -1,8 +1,9 @@
 // pixelcloth body: the built-in mannequin or an imported body, with skeleton, weights and parts.
+#include "pixelcloth/core/body.h"
+
 #include <memory>
 
 #include "pixelcloth/core/atomic_file.h"
-#include "pixelcloth/core/body.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
@@ -33,14 +34,14 @@ void runBody(const BodyArgs& args) {
     MannequinOptions options;
     options.shape = args.shape;
     options.validate();
-    ensureOutputFolder(args.out);
+    checkOutputFolder(args.out);
     PIXELCLOTH_INFO("body: meshing the built-in mannequin (shape " << args.shape << ")");
     body = makeMannequin(options);
     description = "built-in mannequin, shape " + std::to_string(args.shape);
   } else {
     JointPositions joints = readJointPositions(args.joints);
     Mesh mesh = readMesh(args.importMesh);
-    ensureOutputFolder(args.out);
+    checkOutputFolder(args.out);
     PIXELCLOTH_INFO("body: importing " << args.importMesh << " (" << mesh.numVertices() << " vertices)");
     body = importBody(mesh, joints, args.importMesh);
     description = "imported from " + args.importMesh;
@@ -60,12 +61,14 @@ void runBody(const BodyArgs& args) {
 
 void registerBody(CLI::App& app) {
   auto args = std::make_shared<BodyArgs>();
-  CLI::App* verb = app.add_subcommand("body", "Make the built-in mannequin (or import a body): mesh, skeleton, skin "
-                                              "weights, collision parts and a picture");
+  CLI::App* verb = app.add_subcommand("body",
+                                      "Make the built-in mannequin (or import a body): mesh, skeleton, skin "
+                                      "weights, collision parts and a picture");
   verb->add_option("--out", args->out, "Output folder (body.obj, skeleton.json, weights.npy, parts.json, body.png)")
       ->required();
   verb->add_option("--shape", args->shape, "Girth of the built-in mannequin: -1 thinner ... 0 default ... 2 thicker")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(-1.0, 2.0));
   verb->add_option("--corrupt-weights", args->corrupt,
                    "Reproduce the paper's skinning artifacts: move upper-arm weight to the torso ('torso') or to the "
                    "torso and the opposite arm ('torso+arm')")

@@ -57,11 +57,11 @@ Pose aPose(double degrees) {
 /// Arms raised and bent, torso twisted: a pose where weight errors show.
 Pose showPose() {
   Eigen::Matrix<double, 10, 3> e = Eigen::Matrix<double, 10, 3>::Zero();
-  e(2, 1) = 10;    // spine twist
-  e(5, 2) = 55;    // l_arm up
-  e(6, 1) = -70;   // l_forearm bent forward
-  e(8, 2) = 20;    // r_arm down a little (right side mirrors)
-  e(8, 1) = 40;    // r_arm forward
+  e(2, 1) = 10;   // spine twist
+  e(5, 2) = 55;   // l_arm up
+  e(6, 1) = -70;  // l_forearm bent forward
+  e(8, 2) = 20;   // r_arm down a little (right side mirrors)
+  e(8, 1) = 40;   // r_arm forward
   return Pose::fromEulerDegrees(e);
 }
 
@@ -83,7 +83,8 @@ void writeIndex(const fs::path& out, const nlohmann::json& report) {
   }
   html << "<h2>Timings</h2><table><tr><th>step</th><th>seconds</th></tr>";
   for (const auto& step : report["steps"])
-    html << "<tr><td>" << step["name"].get<std::string>() << "</td><td>" << step["seconds"].get<double>() << "</td></tr>";
+    html << "<tr><td>" << step["name"].get<std::string>() << "</td><td>" << step["seconds"].get<double>()
+         << "</td></tr>";
   html << "</table></body></html>\n";
   writeTextAtomically(out / "index.html", html.str());
 }
@@ -91,7 +92,9 @@ void writeIndex(const fs::path& out, const nlohmann::json& report) {
 void runDemo(const DemoArgs& args) {
   fs::path out(args.out);
   ensureOutputFolder(out);
-  nlohmann::json report = {{"format", "pixelcloth.demo"}, {"version", 1}, {"steps", nlohmann::json::array()},
+  nlohmann::json report = {{"format", "pixelcloth.demo"},
+                           {"version", 1},
+                           {"steps", nlohmann::json::array()},
                            {"sections", nlohmann::json::array()}};
   Steps steps(report);
   auto section = [&](const std::string& title, const std::string& text, std::vector<std::string> pictures) {
@@ -110,9 +113,10 @@ void runDemo(const DemoArgs& args) {
                       {"height_m", body.mesh.V.col(1).maxCoeff()},
                       {"volume_m3", enclosedVolume(body.mesh.V, body.mesh.F)}};
   });
-  section("Body", "The built-in mannequin (" + std::to_string(body.mesh.numVertices()) +
-                      " vertices, closed and manifold): shaded with its skeleton; bone-heat skin weights (a colour "
-                      "per joint); collision parts (left arm red, right arm blue, torso grey, overlaps purple); side.",
+  section("Body",
+          "The built-in mannequin (" + std::to_string(body.mesh.numVertices()) +
+              " vertices, closed and manifold): shaded with its skeleton; bone-heat skin weights (a colour "
+              "per joint); collision parts (left arm red, right arm blue, torso grey, overlaps purple); side.",
           {"body/body.png"});
 
   steps.run("body shapes: thinner (-1), default (0), thicker (2)", [&] {
@@ -130,8 +134,9 @@ void runDemo(const DemoArgs& args) {
     }
     writePng(out / "shapes.png", contactSheet(pictures, 3));
   });
-  section("Body shapes", "The shape parameter scales girth (-1 thinner, 0 default, 2 thicker), as the paper's "
-                         "intentionally modified body shapes.",
+  section("Body shapes",
+          "The shape parameter scales girth (-1 thinner, 0 default, 2 thicker), as the paper's "
+          "intentionally modified body shapes.",
           {"shapes.png"});
 
   steps.run("skinning artifacts: corrupted upper-arm weights", [&] {
@@ -147,8 +152,9 @@ void runDemo(const DemoArgs& args) {
     }
     writePng(out / "skinning_artifacts.png", contactSheet(pictures, 3));
   });
-  section("Skinning artifacts", "One pose with the bone-heat weights, then with half of each upper arm's weight moved "
-                                "to the torso, then to the torso and the opposite arm (the paper's experiment).",
+  section("Skinning artifacts",
+          "One pose with the bone-heat weights, then with half of each upper arm's weight moved "
+          "to the torso, then to the torso and the opposite arm (the paper's experiment).",
           {"skinning_artifacts.png"});
 
   steps.run("poses: random poses within the joint limits", [&] {
@@ -182,8 +188,9 @@ void runDemo(const DemoArgs& args) {
     writeJson(folder / "poses.json", {{"seed", args.seed}, {"poses", list}});
     writePng(folder / "posed.png", contactSheet(pictures, 6));
   });
-  section("Posed bodies", "Random poses drawn uniformly within 60% of each joint's range of motion (AAOS limits), "
-                          "skinned by linear blend skinning; the skeleton is drawn over each.",
+  section("Posed bodies",
+          "Random poses drawn uniformly within 60% of each joint's range of motion (AAOS limits), "
+          "skinned by linear blend skinning; the skeleton is drawn over each.",
           {"poses/posed.png"});
 
   steps.run("import: an A-posed body brought back to the T-pose", [&] {
@@ -212,11 +219,12 @@ void runDemo(const DemoArgs& args) {
     RgbImage before = renderMeshes({RenderMesh{asRead.V, asRead.F, {}, {}, {0.87, 0.78, 0.70}}}, view);
     RgbImage after = renderPosedBody(imported, Pose::identity(), view);
     writePng(folder / "import.png", contactSheet({before, after}, 2));
-    report["import"] = {{"mean_vertex_distance_to_original_mm",
-                         1000.0 * (imported.mesh.V - body.mesh.V).rowwise().norm().mean()}};
+    report["import"] = {
+        {"mean_vertex_distance_to_original_mm", 1000.0 * (imported.mesh.V - body.mesh.V).rowwise().norm().mean()}};
   });
-  section("Body import", "An A-posed copy of the mannequin written as OBJ + joints JSON, imported back: weights "
-                         "recomputed, arms rotated into the T-pose (left: input; right: imported body).",
+  section("Body import",
+          "An A-posed copy of the mannequin written as OBJ + joints JSON, imported back: weights "
+          "recomputed, arms rotated into the T-pose (left: input; right: imported body).",
           {"import/import.png"});
 
   steps.run("garments: T-shirt and necktie sewing patterns", [&] {
@@ -233,9 +241,10 @@ void runDemo(const DemoArgs& args) {
                         {"length_m", shirt.length()}};
     report["necktie"] = {{"summary", tie.summary()}, {"meshing", tie.meshing.summary(tie.mesh.numVertices())}};
   });
-  section("T-shirt pattern", "Front and back layouts (front, back, sleeve halves), triangulated by CGAL's constrained "
-                             "Delaunay mesher; seams in matching colours on both layouts, openings dark. " +
-                                 report["tshirt"]["summary"].get<std::string>(),
+  section("T-shirt pattern",
+          "Front and back layouts (front, back, sleeve halves), triangulated by CGAL's constrained "
+          "Delaunay mesher; seams in matching colours on both layouts, openings dark. " +
+              report["tshirt"]["summary"].get<std::string>(),
           {"tshirt/pattern.png", "tshirt/garment.png"});
   section("Necktie pattern", report["necktie"]["summary"].get<std::string>(),
           {"necktie/pattern.png", "necktie/garment.png"});
@@ -250,11 +259,13 @@ void runDemo(const DemoArgs& args) {
 
 void registerDemo(CLI::App& app) {
   auto args = std::make_shared<DemoArgs>();
-  CLI::App* verb = app.add_subcommand("demo", "Run everything that exists on the built-in body and garments; write "
-                                              "a report folder with pictures");
+  CLI::App* verb = app.add_subcommand("demo",
+                                      "Run everything that exists on the built-in body and garments; write "
+                                      "a report folder with pictures");
   verb->add_option("--out", args->out, "Report folder (index.html, report.json, pictures, meshes)")->required();
-  verb->add_option("--poses", args->poses, "Number of random poses to show")->capture_default_str()->check(
-      CLI::Range(1, 200));
+  verb->add_option("--poses", args->poses, "Number of random poses to show")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 200));
   verb->add_option("--seed", args->seed, "Seed of the random poses")->capture_default_str();
   verb->callback([args] { runDemo(*args); });
 }

@@ -1,8 +1,9 @@
 // pixelcloth garment: a garment template as a mesh with pattern-space UVs, and its pattern picture.
+#include "pixelcloth/core/garment.h"
+
 #include <memory>
 
 #include "pixelcloth/core/atomic_file.h"
-#include "pixelcloth/core/garment.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/previews.h"
 #include "verbs.h"
@@ -23,13 +24,13 @@ void runGarment(const GarmentArgs& args) {
     TShirtOptions options;
     if (args.vertices > 0) options.targetVertices = args.vertices;
     options.validate();
-    ensureOutputFolder(args.out);
+    checkOutputFolder(args.out);
     garment = makeTShirt(options);
   } else {
     NecktieOptions options;
     if (args.vertices > 0) options.targetVertices = args.vertices;
     options.validate();
-    ensureOutputFolder(args.out);
+    checkOutputFolder(args.out);
     garment = makeNecktie(options);
   }
   saveGarment(args.out, garment);
@@ -42,15 +43,17 @@ void runGarment(const GarmentArgs& args) {
 
 void registerGarment(CLI::App& app) {
   auto args = std::make_shared<GarmentArgs>();
-  CLI::App* verb = app.add_subcommand("garment", "Make a garment template (flat sewing pattern sewn into one mesh) and "
-                                                 "its pattern picture");
+  CLI::App* verb = app.add_subcommand("garment",
+                                      "Make a garment template (flat sewing pattern sewn into one mesh) and "
+                                      "its pattern picture");
   verb->add_option("kind", args->kind, "Which garment: tshirt or necktie")
       ->required()
       ->check(CLI::IsMember({"tshirt", "necktie"}));
   verb->add_option("--out", args->out, "Output folder (garment.obj with vt, garment.json, pattern.png, garment.png)")
       ->required();
   verb->add_option("--vertices", args->vertices,
-                   "Target vertex count (default: 3000 for the T-shirt, 500 for the necktie)");
+                   "Target vertex count (default: 3000 for the T-shirt, 500 for the necktie)")
+      ->check(CLI::Range(100, 200000));
   verb->callback([args] { runGarment(*args); });
 }
 

@@ -30,7 +30,8 @@ void runPose(const PoseArgs& args) {
   using namespace pixelcloth::core;
   PIXELCLOTH_CHECK(args.pose.empty() != (args.random == 0),
                    "pose: give either --pose POSE.json or --random N (with --seed S)");
-  PIXELCLOTH_CHECK(args.random >= 0 && args.random <= 10000, "pose: --random must be in [1, 10000], got " << args.random);
+  PIXELCLOTH_CHECK(args.random >= 0 && args.random <= 10000,
+                   "pose: --random must be in [1, 10000], got " << args.random);
   Body body = loadBody(args.body);
   std::vector<Pose> poses;
   if (!args.pose.empty()) {

@@ -11,6 +11,12 @@ namespace pixelcloth::core {
 
 namespace fs = std::filesystem;
 
+void checkOutputFolder(const fs::path& folder) {
+  std::error_code ec;
+  PIXELCLOTH_CHECK(!fs::exists(folder, ec) || fs::is_directory(folder, ec),
+                   folder.string() << ": exists but is not a folder; expected a folder to write outputs into");
+}
+
 void ensureOutputFolder(const fs::path& folder) {
   std::error_code ec;
   if (fs::exists(folder, ec)) {

@@ -60,15 +60,16 @@ JointPositions readJointPositions(const std::filesystem::path& path) {
       for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
       PIXELCLOTH_FAIL(path.string() << ": unknown joint '" << name << "'; expected names: " << list);
     }
-    PIXELCLOTH_CHECK(value.is_array() && value.size() == 3 && value[0].is_number() && value[1].is_number() &&
-                         value[2].is_number(),
-                     path.string() << ": joint '" << name << "' must be [x, y, z] in metres");
+    PIXELCLOTH_CHECK(
+        value.is_array() && value.size() == 3 && value[0].is_number() && value[1].is_number() && value[2].is_number(),
+        path.string() << ": joint '" << name << "' must be [x, y, z] in metres");
     Eigen::Vector3d p(value[0].get<double>(), value[1].get<double>(), value[2].get<double>());
     PIXELCLOTH_CHECK(p.allFinite(), path.string() << ": joint '" << name << "' has a non-finite coordinate");
     positions[name] = p;
   }
   for (const auto& name : kPoseJoints) {
-    PIXELCLOTH_CHECK(positions.count(name), path.string() << ": missing joint '" << name << "' (required: the 10 "
+    PIXELCLOTH_CHECK(positions.count(name), path.string() << ": missing joint '" << name
+                                                          << "' (required: the 10 "
                                                              "pose joints lower_back, spine, spine1, neck, l_shoulder, "
                                                              "l_arm, l_forearm, r_shoulder, r_arm, r_forearm)");
   }
@@ -85,7 +86,8 @@ Body importBody(const Mesh& input, const JointPositions& joints, const std::stri
                            << topology.inconsistentEdges << " inconsistently oriented edges)");
   Mesh mesh = input;
   if (enclosedVolume(mesh.V, mesh.F) < 0) mesh.F.col(1).swap(mesh.F.col(2));
-  for (const auto& name : kPoseJoints) PIXELCLOTH_CHECK(joints.count(name), context << ": missing joint '" << name << "'");
+  for (const auto& name : kPoseJoints)
+    PIXELCLOTH_CHECK(joints.count(name), context << ": missing joint '" << name << "'");
 
   // Fit the standard skeleton: given joints, optional ones estimated from the mesh.
   Skeleton s;
@@ -117,18 +119,30 @@ Body importBody(const Mesh& input, const JointPositions& joints, const std::stri
   for (int j = 0; j < s.numJoints(); ++j) {
     const std::string& name = s.names[j];
     Eigen::Vector3d end;
-    if (name == "head") end = headTop - 0.02 * up;
-    else if (name == "l_forearm") end = tips[0];
-    else if (name == "r_forearm") end = tips[1];
-    else if (name == "root") end = s.positions.row(s.index("lower_back"));
-    else if (name == "lower_back") end = s.positions.row(s.index("spine"));
-    else if (name == "spine") end = s.positions.row(s.index("spine1"));
-    else if (name == "spine1") end = s.positions.row(s.index("neck"));
-    else if (name == "neck") end = s.positions.row(s.index("head"));
-    else if (name == "l_shoulder") end = s.positions.row(s.index("l_arm"));
-    else if (name == "l_arm") end = s.positions.row(s.index("l_forearm"));
-    else if (name == "r_shoulder") end = s.positions.row(s.index("r_arm"));
-    else end = s.positions.row(s.index("r_forearm"));
+    if (name == "head")
+      end = headTop - 0.02 * up;
+    else if (name == "l_forearm")
+      end = tips[0];
+    else if (name == "r_forearm")
+      end = tips[1];
+    else if (name == "root")
+      end = s.positions.row(s.index("lower_back"));
+    else if (name == "lower_back")
+      end = s.positions.row(s.index("spine"));
+    else if (name == "spine")
+      end = s.positions.row(s.index("spine1"));
+    else if (name == "spine1")
+      end = s.positions.row(s.index("neck"));
+    else if (name == "neck")
+      end = s.positions.row(s.index("head"));
+    else if (name == "l_shoulder")
+      end = s.positions.row(s.index("l_arm"));
+    else if (name == "l_arm")
+      end = s.positions.row(s.index("l_forearm"));
+    else if (name == "r_shoulder")
+      end = s.positions.row(s.index("r_arm"));
+    else
+      end = s.positions.row(s.index("r_forearm"));
     s.boneEnds.row(j) = end.transpose();
   }
   s.validate(context);
@@ -152,7 +166,8 @@ Body importBody(const Mesh& input, const JointPositions& joints, const std::stri
   // Bring the arms to the T-pose: rotate each upper arm, then each forearm, onto the horizontal.
   Pose pose = Pose::identity();
   bool moved = false;
-  for (const auto& [side, sign] : {std::pair<std::string, double>{"l", 1.0}, std::pair<std::string, double>{"r", -1.0}}) {
+  for (const auto& [side, sign] :
+       {std::pair<std::string, double>{"l", 1.0}, std::pair<std::string, double>{"r", -1.0}}) {
     Eigen::Vector3d target(sign, 0, 0);
     Eigen::Vector3d shoulderToElbow = (get(side + "_forearm") - get(side + "_arm")).normalized();
     Eigen::Vector3d elbowToHand = (tips[side == "l" ? 0 : 1] - get(side + "_forearm")).normalized();

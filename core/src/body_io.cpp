@@ -32,15 +32,17 @@ void saveBody(const fs::path& folder, const Body& body, const std::string& descr
   const Skeleton& s = body.skeleton;
   nlohmann::json joints = nlohmann::json::array();
   for (int j = 0; j < s.numJoints(); ++j) {
-    nlohmann::json joint = {{"name", s.names[j]},
-                            {"parent", s.parents[j] < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.names[s.parents[j]])},
-                            {"position", toJson(s.positions.row(j).transpose())},
-                            {"bone_end", toJson(s.boneEnds.row(j).transpose())}};
+    nlohmann::json joint = {
+        {"name", s.names[j]},
+        {"parent", s.parents[j] < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.names[s.parents[j]])},
+        {"position", toJson(s.positions.row(j).transpose())},
+        {"bone_end", toJson(s.boneEnds.row(j).transpose())}};
     bool posable = std::find(kPoseJoints.begin(), kPoseJoints.end(), s.names[j]) != kPoseJoints.end();
     joint["posable"] = posable;
     if (posable) {
       const JointLimits& limits = jointLimits(s.names[j]);
-      joint["limits_deg"] = {{"lower", toJson(limits.lower)}, {"upper", toJson(limits.upper)}, {"source", limits.source}};
+      joint["limits_deg"] = {
+          {"lower", toJson(limits.lower)}, {"upper", toJson(limits.upper)}, {"source", limits.source}};
     }
     joints.push_back(joint);
   }
@@ -56,7 +58,8 @@ void saveBody(const fs::path& folder, const Body& body, const std::string& descr
       {"weights", {{"file", "weights.npy"}, {"shape", {body.mesh.numVertices(), s.numJoints()}}, {"columns", s.names}}},
       {"mesh", {{"file", "body.obj"}, {"vertices", body.mesh.numVertices()}, {"faces", body.mesh.numFaces()}}}};
   nlohmann::json parts = nlohmann::json::array();
-  for (const BodyPart& part : body.parts) parts.push_back({{"name", part.name}, {"faces", part.faces}, {"vertices", part.vertices}});
+  for (const BodyPart& part : body.parts)
+    parts.push_back({{"name", part.name}, {"faces", part.faces}, {"vertices", part.vertices}});
 
   Mesh mesh = body.mesh;
   mesh.UV.resize(0, 2);

@@ -16,8 +16,8 @@ void saveGarment(const std::filesystem::path& folder, const Garment& garment) {
   nlohmann::json layouts = nlohmann::json::array();
   for (int l = 0; l < garment.numLayouts(); ++l) {
     Eigen::AlignedBox2d box = garment.layoutBounds(l);
-    layouts.push_back({{"name", garment.layouts[l]},
-                       {"bounds_m", {box.min().x(), box.min().y(), box.max().x(), box.max().y()}}});
+    layouts.push_back(
+        {{"name", garment.layouts[l]}, {"bounds_m", {box.min().x(), box.min().y(), box.max().x(), box.max().y()}}});
   }
   nlohmann::json json = {
       {"format", "pixelcloth.garment"},
@@ -27,7 +27,8 @@ void saveGarment(const std::filesystem::path& folder, const Garment& garment) {
       {"units", "metres; UVs are pattern-space metres per layout"},
       {"layouts", layouts},
       {"panels", garment.panels},
-      {"face_layout", std::vector<int>(garment.faceLayout.data(), garment.faceLayout.data() + garment.faceLayout.size())},
+      {"face_layout",
+       std::vector<int>(garment.faceLayout.data(), garment.faceLayout.data() + garment.faceLayout.size())},
       {"face_panel", std::vector<int>(garment.facePanel.data(), garment.facePanel.data() + garment.facePanel.size())},
       {"seams", seams},
       {"openings", openings},

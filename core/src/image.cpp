@@ -50,9 +50,9 @@ struct FileCloser {
 }  // namespace
 
 void writePng(const std::filesystem::path& path, const RgbImage& image) {
-  PIXELCLOTH_CHECK(image.width > 0 && image.height > 0 &&
-                       image.pixels.size() == static_cast<size_t>(image.width) * image.height * 3,
-                   path.string() << ": refusing to write an empty or inconsistent image");
+  PIXELCLOTH_CHECK(
+      image.width > 0 && image.height > 0 && image.pixels.size() == static_cast<size_t>(image.width) * image.height * 3,
+      path.string() << ": refusing to write an empty or inconsistent image");
   writeAtomically(path, [&](const std::filesystem::path& temporary) {
     std::unique_ptr<std::FILE, FileCloser> file(std::fopen(temporary.c_str(), "wb"));
     PIXELCLOTH_CHECK(file, path.string() << ": cannot open for writing");
@@ -166,7 +166,7 @@ void paste(RgbImage& target, const RgbImage& source, int x, int y) {
 }
 
 Color paletteColor(int index) {
-  static const Color kPalette[12] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},
+  static const Color kPalette[12] = {{31, 119, 180},  {255, 127, 14}, {44, 160, 44},   {214, 39, 40},
                                      {148, 103, 189}, {140, 86, 75},  {227, 119, 194}, {127, 127, 127},
                                      {188, 189, 34},  {23, 190, 207}, {174, 199, 232}, {255, 187, 120}};
   return kPalette[((index % 12) + 12) % 12];

@@ -23,6 +23,12 @@ nlohmann::json readJson(const fs::path& path) {
     if (colon != std::string::npos) reason = reason.substr(colon + 2);
     PIXELCLOTH_FAIL(path.string() << ": invalid JSON at line " << line << ", column " << column << " (byte " << e.byte
                                   << "): " << reason);
+  } catch (const nlohmann::json::exception& e) {
+    // Valid syntax the parser still cannot hold, e.g. a number too large for a double (out_of_range.406).
+    std::string reason = e.what();
+    const size_t bracket = reason.find("] ");
+    if (bracket != std::string::npos) reason = reason.substr(bracket + 2);
+    PIXELCLOTH_FAIL(path.string() << ": cannot read the JSON: " << reason);
   }
 }
 

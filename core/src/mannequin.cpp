@@ -9,8 +9,8 @@
 
 #include <algorithm>
 #include <array>
-#include <tuple>
 #include <cmath>
+#include <tuple>
 
 #include "pixelcloth/core/body.h"
 #include "pixelcloth/core/error.h"
@@ -140,8 +140,8 @@ Skeleton mannequinSkeleton() {
       -0.175, 1.41, -0.015,       // r_arm
       -0.46, 1.42, -0.02;         // r_forearm
   s.boneEnds.resize(12, 3);
-  s.boneEnds << s.positions.row(1), s.positions.row(2), s.positions.row(3), s.positions.row(4), s.positions.row(5),
-      0, 1.72, 0.01,  // head tip
+  s.boneEnds << s.positions.row(1), s.positions.row(2), s.positions.row(3), s.positions.row(4), s.positions.row(5), 0,
+      1.72, 0.01,                                                  // head tip
       s.positions.row(7), s.positions.row(8), 0.86, 1.415, -0.02,  // left hand tip
       s.positions.row(10), s.positions.row(11), -0.86, 1.415, -0.02;
   return s;

@@ -2,8 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <unordered_map>
 #include <vector>
@@ -16,27 +16,26 @@ void Mesh::validate(const std::string& context) const {
   PIXELCLOTH_CHECK(V.rows() > 0, context << ": the mesh has no vertices");
   PIXELCLOTH_CHECK(F.rows() > 0, context << ": the mesh has no faces");
   for (int i = 0; i < V.rows(); ++i) {
-    PIXELCLOTH_CHECK(V.row(i).allFinite(), context << ": vertex " << i << " has a non-finite coordinate ("
-                                                   << V(i, 0) << ", " << V(i, 1) << ", " << V(i, 2) << ")");
+    PIXELCLOTH_CHECK(V.row(i).allFinite(), context << ": vertex " << i << " has a non-finite coordinate (" << V(i, 0)
+                                                   << ", " << V(i, 1) << ", " << V(i, 2) << ")");
   }
   for (int f = 0; f < F.rows(); ++f) {
     for (int k = 0; k < 3; ++k) {
       PIXELCLOTH_CHECK(F(f, k) >= 0 && F(f, k) < V.rows(), context << ": face " << f << " uses vertex " << F(f, k)
-                                                                   << ", but the mesh has " << V.rows()
-                                                                   << " vertices");
+                                                                   << ", but the mesh has " << V.rows() << " vertices");
     }
-    PIXELCLOTH_CHECK(F(f, 0) != F(f, 1) && F(f, 1) != F(f, 2) && F(f, 0) != F(f, 2),
-                     context << ": face " << f << " repeats a vertex (" << F(f, 0) << ", " << F(f, 1) << ", "
-                             << F(f, 2) << ")");
+    PIXELCLOTH_CHECK(
+        F(f, 0) != F(f, 1) && F(f, 1) != F(f, 2) && F(f, 0) != F(f, 2),
+        context << ": face " << f << " repeats a vertex (" << F(f, 0) << ", " << F(f, 1) << ", " << F(f, 2) << ")");
   }
   if (FUV.rows() > 0) {
     PIXELCLOTH_CHECK(FUV.rows() == F.rows(), context << ": " << FUV.rows() << " texture faces for " << F.rows()
                                                      << " faces; expected one per face");
     for (int f = 0; f < FUV.rows(); ++f) {
       for (int k = 0; k < 3; ++k) {
-        PIXELCLOTH_CHECK(FUV(f, k) >= 0 && FUV(f, k) < UV.rows(),
-                         context << ": face " << f << " uses texture coordinate " << FUV(f, k) << ", but there are "
-                                 << UV.rows());
+        PIXELCLOTH_CHECK(FUV(f, k) >= 0 && FUV(f, k) < UV.rows(), context << ": face " << f
+                                                                          << " uses texture coordinate " << FUV(f, k)
+                                                                          << ", but there are " << UV.rows());
       }
     }
     for (int i = 0; i < UV.rows(); ++i) {

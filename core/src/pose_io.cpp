@@ -14,8 +14,8 @@ Eigen::VectorXf numbers(const nlohmann::json& value, int count, const std::strin
                            << (value.is_array() ? std::to_string(value.size()) + " entries" : value.type_name()));
   Eigen::VectorXf out(count);
   for (int i = 0; i < count; ++i) {
-    PIXELCLOTH_CHECK(value[i].is_number(), context << ": entry " << i << " is " << value[i].type_name()
-                                                   << ", expected a number");
+    PIXELCLOTH_CHECK(value[i].is_number(),
+                     context << ": entry " << i << " is " << value[i].type_name() << ", expected a number");
     out[i] = value[i].get<float>();
   }
   return out;

@@ -20,8 +20,8 @@ void drawSkeleton(RgbImage& image, const Projection& projection, const Skeleton&
   for (int j = 0; j < skeleton.numJoints(); ++j) {
     int p = skeleton.parents[j];
     if (p >= 0)
-      drawLine(image, projection.toPixel(positions.row(p).transpose()), projection.toPixel(positions.row(j).transpose()),
-               {40, 40, 40}, 2.0);
+      drawLine(image, projection.toPixel(positions.row(p).transpose()),
+               projection.toPixel(positions.row(j).transpose()), {40, 40, 40}, 2.0);
   }
   for (int j = 0; j < skeleton.numJoints(); ++j) {
     Eigen::Vector2d q = projection.toPixel(positions.row(j).transpose());
@@ -76,8 +76,10 @@ RgbImage renderBodySheet(const Body& body, int panelSize) {
     }
   }
   for (int f = 0; f < body.mesh.numFaces(); ++f) {
-    if (count[f] > 1) parts.faceColors.row(f) << 0.65, 0.35, 0.75;  // overlap of an arm and the torso
-    else if (count[f] == 0) parts.faceColors.row(f) << 0.2, 0.2, 0.2;
+    if (count[f] > 1)
+      parts.faceColors.row(f) << 0.65, 0.35, 0.75;  // overlap of an arm and the torso
+    else if (count[f] == 0)
+      parts.faceColors.row(f) << 0.2, 0.2, 0.2;
   }
   RgbImage partPicture = renderMeshes({parts}, front);
 

@@ -123,10 +123,12 @@ Eigen::Vector3d colorRamp(double t, bool diverging) {
   t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0);
   if (diverging) {
     Eigen::Vector3d blue(0.23, 0.30, 0.75), white(0.95, 0.95, 0.95), red(0.71, 0.02, 0.15);
-    return t < 0.5 ? Eigen::Vector3d(blue + (white - blue) * (2 * t)) : Eigen::Vector3d(white + (red - white) * (2 * t - 1));
+    return t < 0.5 ? Eigen::Vector3d(blue + (white - blue) * (2 * t))
+                   : Eigen::Vector3d(white + (red - white) * (2 * t - 1));
   }
   // A perceptual-ish ramp: dark blue, teal, green, yellow.
-  static const Eigen::Vector3d stops[4] = {{0.27, 0.00, 0.33}, {0.13, 0.57, 0.55}, {0.37, 0.79, 0.38}, {0.99, 0.91, 0.14}};
+  static const Eigen::Vector3d stops[4] = {
+      {0.27, 0.00, 0.33}, {0.13, 0.57, 0.55}, {0.37, 0.79, 0.38}, {0.99, 0.91, 0.14}};
   double s = t * 3.0;
   int i = std::min(2, static_cast<int>(s));
   return stops[i] + (stops[i + 1] - stops[i]) * (s - i);

@@ -36,9 +36,9 @@ Eigen::Vector3d eulerXZYFromRotation(const Eigen::Matrix3d& r) {
 }
 
 const std::vector<std::string>& standardJointNames() {
-  static const std::vector<std::string> names = {"root",  "lower_back", "spine",      "spine1",
-                                                 "neck",  "head",       "l_shoulder", "l_arm",
-                                                 "l_forearm", "r_shoulder", "r_arm",  "r_forearm"};
+  static const std::vector<std::string> names = {"root",      "lower_back", "spine",      "spine1",
+                                                 "neck",      "head",       "l_shoulder", "l_arm",
+                                                 "l_forearm", "r_shoulder", "r_arm",      "r_forearm"};
   return names;
 }
 
@@ -81,7 +81,8 @@ const JointLimits& jointLimits(const std::string& name) {
   // Degrees (x, y, z) relative to the T-pose. See the header for the sources. For the left arm in
   // the T-pose (along +x): +z raises it, -y swings it forward, x twists it.
   static const std::string aaos = "AAOS normal range of motion (1965), relative to the T-pose";
-  static const std::string trunk = "AAOS thoracolumbar range (flexion 80, extension 25, lateral 35, rotation 45), split over 3 joints";
+  static const std::string trunk =
+      "AAOS thoracolumbar range (flexion 80, extension 25, lateral 35, rotation 45), split over 3 joints";
   static const std::string clavicle = "Ludewig et al. 2009, sternoclavicular elevation / retraction";
   static const std::map<std::string, JointLimits> limits = [] {
     std::map<std::string, JointLimits> m;
@@ -89,11 +90,14 @@ const JointLimits& jointLimits(const std::string& name) {
     m["lower_back"] = spine;
     m["spine"] = spine;
     m["spine1"] = spine;
-    m["neck"] = {{-45, -60, -45}, {45, 60, 45}, aaos + " (cervical: flexion 45, extension 45, lateral 45, rotation 60)"};
+    m["neck"] = {
+        {-45, -60, -45}, {45, 60, 45}, aaos + " (cervical: flexion 45, extension 45, lateral 45, rotation 60)"};
     m["l_shoulder"] = {{0, -20, -10}, {0, 20, 30}, clavicle};
-    m["l_arm"] = {{-90, -135, -90}, {70, 45, 90},
-                  aaos + " (shoulder: abduction 180 = T-pose +90, adduction to the side -90, horizontal flexion "
-                         "135, horizontal extension 45, rotation 70 / 90)"};
+    m["l_arm"] = {{-90, -135, -90},
+                  {70, 45, 90},
+                  aaos +
+                      " (shoulder: abduction 180 = T-pose +90, adduction to the side -90, horizontal flexion "
+                      "135, horizontal extension 45, rotation 70 / 90)"};
     m["l_forearm"] = {{-80, -150, 0}, {80, 0, 0}, aaos + " (elbow flexion 150, pronation / supination 80)"};
     for (const char* side : {"shoulder", "arm", "forearm"}) {
       JointLimits right = m[std::string("l_") + side];
@@ -109,7 +113,8 @@ const JointLimits& jointLimits(const std::string& name) {
     return m;
   }();
   auto it = limits.find(name);
-  PIXELCLOTH_CHECK(it != limits.end(), "no joint limits for '" << name << "'; posable joints are lower_back, spine, "
+  PIXELCLOTH_CHECK(it != limits.end(), "no joint limits for '" << name
+                                                               << "'; posable joints are lower_back, spine, "
                                                                   "spine1, neck, l_shoulder, l_arm, l_forearm, "
                                                                   "r_shoulder, r_arm, r_forearm");
   return it->second;
@@ -135,9 +140,8 @@ Pose Pose::fromVector(const Eigen::Ref<const Eigen::VectorXf>& values, const std
       }
     double orthogonality = (r * r.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
     PIXELCLOTH_CHECK(orthogonality < 1e-3 && r.determinant() > 0,
-                     context << ": joint '" << kPoseJoints[k]
-                             << "' is not a rotation matrix (|R R^T - I| = " << orthogonality
-                             << ", det = " << r.determinant() << ")");
+                     context << ": joint '" << kPoseJoints[k] << "' is not a rotation matrix (|R R^T - I| = "
+                             << orthogonality << ", det = " << r.determinant() << ")");
     // Re-orthonormalise float input so skinning stays rigid.
     Eigen::JacobiSVD<Eigen::Matrix3d> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
     pose.rotations[k] = svd.matrixU() * svd.matrixV().transpose();
@@ -170,7 +174,8 @@ bool Pose::withinLimits(double slackDegrees) const {
   for (int k = 0; k < 10; ++k) {
     const JointLimits& limits = jointLimits(kPoseJoints[k]);
     for (int a = 0; a < 3; ++a) {
-      if (degrees(k, a) < limits.lower[a] - slackDegrees || degrees(k, a) > limits.upper[a] + slackDegrees) return false;
+      if (degrees(k, a) < limits.lower[a] - slackDegrees || degrees(k, a) > limits.upper[a] + slackDegrees)
+        return false;
     }
   }
   return true;

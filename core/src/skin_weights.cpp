@@ -111,9 +111,10 @@ Eigen::MatrixXd boneHeatWeights(const Eigen::MatrixX3d& V, const Eigen::MatrixX3
     double best = -1;
     for (const auto& [distance, j] : candidates) {
       if (best > 0 && distance > best * 1.0001 + 1e-9) break;
-      Eigen::Vector3d target = closestOnSegment(x, skeleton.positions.row(j).transpose(),
-                                                skeleton.boneEnds.row(j).transpose());
-      Kernel::Segment_3 segment(CgalPoint(start.x(), start.y(), start.z()), CgalPoint(target.x(), target.y(), target.z()));
+      Eigen::Vector3d target =
+          closestOnSegment(x, skeleton.positions.row(j).transpose(), skeleton.boneEnds.row(j).transpose());
+      Kernel::Segment_3 segment(CgalPoint(start.x(), start.y(), start.z()),
+                                CgalPoint(target.x(), target.y(), target.z()));
       if (tree.do_intersect(segment)) continue;
       if (best < 0) best = distance;
       nearest(v, j) = 1.0;
@@ -153,7 +154,8 @@ Eigen::MatrixXd corruptUpperArmWeights(const Skeleton& skeleton, const Eigen::Ma
   PIXELCLOTH_CHECK(mode == "torso" || mode == "torso+arm",
                    "corrupt weights: mode must be 'torso' or 'torso+arm', got '" << mode << "'");
   PIXELCLOTH_CHECK(fraction >= 0 && fraction <= 1, "corrupt weights: fraction must be in [0, 1], got " << fraction);
-  PIXELCLOTH_CHECK(weights.cols() == skeleton.numJoints(), "corrupt weights: " << weights.cols() << " weight columns for "
+  PIXELCLOTH_CHECK(weights.cols() == skeleton.numJoints(), "corrupt weights: " << weights.cols()
+                                                                               << " weight columns for "
                                                                                << skeleton.numJoints() << " joints");
   Eigen::MatrixXd out = weights;
   int torso = skeleton.index("spine1");
@@ -213,9 +215,9 @@ void Body::validate(const std::string& context) const {
   for (int v = 0; v < weights.rows(); ++v) {
     PIXELCLOTH_CHECK(weights.row(v).allFinite() && weights.row(v).minCoeff() >= 0,
                      context << ": skin weights of vertex " << v << " are negative or not finite");
-    PIXELCLOTH_CHECK(std::abs(weights.row(v).sum() - 1.0) < 1e-3,
-                     context << ": skin weights of vertex " << v << " sum to " << weights.row(v).sum()
-                             << ", expected 1");
+    PIXELCLOTH_CHECK(std::abs(weights.row(v).sum() - 1.0) < 1e-3, context << ": skin weights of vertex " << v
+                                                                          << " sum to " << weights.row(v).sum()
+                                                                          << ", expected 1");
   }
   TopologyReport topology = checkTopology(mesh.numVertices(), mesh.F);
   PIXELCLOTH_CHECK(topology.closedManifold(),

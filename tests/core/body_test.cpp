@@ -1,11 +1,12 @@
 // The built-in mannequin, its skeleton and weights, skinning, joint limits, collision parts, import.
+#include "pixelcloth/core/body.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
 #include <fstream>
 
-#include "pixelcloth/core/body.h"
 #include "pixelcloth/core/error.h"
 #include "test_util.h"
 
@@ -52,8 +53,8 @@ TEST(Mannequin, ClosedManifoldSmoothAndLifeSized) {
   EXPECT_LE(body.mesh.numVertices(), 20000);
   EXPECT_GT(pc::enclosedVolume(body.mesh.V, body.mesh.F), 0.0);
   EXPECT_NEAR(body.mesh.V.col(1).maxCoeff(), 1.75, 0.01);  // top of the head
-  EXPECT_LT(body.mesh.V.col(1).minCoeff(), 0.8);             // torso reaches the hips
-  EXPECT_GT(body.mesh.V.col(0).maxCoeff(), 0.85);            // hands in the T-pose
+  EXPECT_LT(body.mesh.V.col(1).minCoeff(), 0.8);           // torso reaches the hips
+  EXPECT_GT(body.mesh.V.col(0).maxCoeff(), 0.85);          // hands in the T-pose
   EXPECT_LT(body.mesh.V.col(0).minCoeff(), -0.85);
   // Smooth: the angle between neighbouring face normals stays small. Measured on the default mannequin:
   // p99 ~17 degrees overall; away from the hands (|x| < 0.7 m) p99 ~13.5 and max ~22 degrees; the flat
@@ -127,10 +128,18 @@ TEST(SkinWeights, FollowTheNearestBone) {
   const pc::Skeleton& s = body.skeleton;
   for (int v = 0; v < body.mesh.numVertices(); ++v) {
     Eigen::Vector3d p = column(body, v);
-    if (p.x() > 0.7) EXPECT_GT(body.weights(v, s.index("l_forearm")), 0.95) << "hand vertex " << v;
-    if (p.x() < -0.7) EXPECT_GT(body.weights(v, s.index("r_forearm")), 0.95) << "hand vertex " << v;
-    if (p.y() > 1.70) EXPECT_GT(body.weights(v, s.index("head")), 0.85) << "head vertex " << v;
-    if (p.y() < 0.78) EXPECT_GT(body.weights(v, s.index("root")), 0.8) << "pelvis vertex " << v;
+    if (p.x() > 0.7) {
+      EXPECT_GT(body.weights(v, s.index("l_forearm")), 0.95) << "hand vertex " << v;
+    }
+    if (p.x() < -0.7) {
+      EXPECT_GT(body.weights(v, s.index("r_forearm")), 0.95) << "hand vertex " << v;
+    }
+    if (p.y() > 1.70) {
+      EXPECT_GT(body.weights(v, s.index("head")), 0.85) << "head vertex " << v;
+    }
+    if (p.y() < 0.78) {
+      EXPECT_GT(body.weights(v, s.index("root")), 0.8) << "pelvis vertex " << v;
+    }
   }
 }
 
@@ -186,7 +195,8 @@ TEST(Skinning, FewTrianglesFlipAcrossTheJointRanges) {
     }
   }
   double randomWorst = 0;
-  for (int seed = 0; seed < 20; ++seed) randomWorst = std::max(randomWorst, flippedFraction(body, pc::randomPose(seed)));
+  for (int seed = 0; seed < 20; ++seed)
+    randomWorst = std::max(randomWorst, flippedFraction(body, pc::randomPose(seed)));
   EXPECT_LT(randomWorst, 0.01);
   RecordProperty("worst_single_axis_flip_fraction", std::to_string(worst));
   RecordProperty("worst_random_flip_fraction", std::to_string(randomWorst));

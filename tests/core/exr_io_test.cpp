@@ -22,19 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string inputErrorOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const pc::InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError, got: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "expected InputError, nothing was thrown";
-  return {};
-}
-
 // 5 rows x 7 columns (not square, so a transposition shows), values of every sign and magnitude.
 pc::ExrImage clothImage() {
   std::mt19937 random(7);
@@ -116,7 +103,7 @@ TEST(ExrIo, MissingChannelIsNamedWithThoseThatExist) {
   fs::path dir = pixelcloth::testing::freshDir("missing");
   pc::writeExr(dir / "cloth.exr", clothImage());
   pc::ExrImage image = pc::readExr(dir / "cloth.exr");
-  EXPECT_EQ(inputErrorOf([&] { image.channel("back.dn"); }),
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { image.channel("back.dn"); }),
             (dir / "cloth.exr").string() + ": no channel 'back.dn'; the channels are 'front.du', 'front.dv', 'mask'");
   EXPECT_TRUE(image.hasChannel("mask"));
   EXPECT_FALSE(image.hasChannel("back.dn"));
@@ -131,29 +118,34 @@ TEST(ExrIo, TruncatedGarbageAndMissingFilesAreNamed) {
   std::string bytes = pc::readTextFile(dir / "whole.exr");
   for (size_t keep : {bytes.size() / 2, bytes.size() - 10, size_t{40}}) {
     std::ofstream(dir / "cut.exr", std::ios::binary) << bytes.substr(0, keep);
-    std::string message = inputErrorOf([&] { pc::readExr(dir / "cut.exr"); });
+    std::string message = pixelcloth::testing::inputErrorOf([&] { pc::readExr(dir / "cut.exr"); });
     EXPECT_EQ(message.rfind((dir / "cut.exr").string() + ": ", 0), 0u) << "kept " << keep << ": " << message;
   }
   std::string garbage;
   for (int i = 0; i < 1000; ++i) garbage.push_back(static_cast<char>(i * 31 + 7));
   std::ofstream(dir / "garbage.exr", std::ios::binary) << garbage;
-  std::string message = inputErrorOf([&] { pc::readExr(dir / "garbage.exr"); });
+  std::string message = pixelcloth::testing::inputErrorOf([&] { pc::readExr(dir / "garbage.exr"); });
   EXPECT_EQ(message.rfind((dir / "garbage.exr").string() + ": not a readable OpenEXR file", 0), 0u) << message;
-  EXPECT_EQ(inputErrorOf([&] { pc::readExr(dir / "absent.exr"); }), (dir / "absent.exr").string() + ": no such file");
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::readExr(dir / "absent.exr"); }),
+            (dir / "absent.exr").string() + ": no such file");
 }
 
 TEST(ExrIo, InconsistentImagesAreRefused) {
   fs::path dir = pixelcloth::testing::freshDir("inconsistent");
   pc::ExrImage image;
   image.addChannel("du", Eigen::MatrixXf::Zero(4, 6));
-  EXPECT_EQ(inputErrorOf([&] { image.addChannel("dv", Eigen::MatrixXf::Zero(6, 4)); }),
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { image.addChannel("dv", Eigen::MatrixXf::Zero(6, 4)); }),
             "image channel 'dv' is 6 x 4 (rows x columns), expected 4 x 6");
-  EXPECT_EQ(inputErrorOf([&] { image.addChannel("du", Eigen::MatrixXf::Zero(4, 6)); }),
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { image.addChannel("du", Eigen::MatrixXf::Zero(4, 6)); }),
             "image already has a channel 'du'");
   image.channels[0].resize(3, 6);  // broken behind addChannel's back
-  EXPECT_NE(inputErrorOf([&] { pc::writeExr(dir / "bad.exr", image); }).find("channel 'du' is 3 x 6, expected 4 x 6"),
+  EXPECT_NE(pixelcloth::testing::inputErrorOf([&] {
+              pc::writeExr(dir / "bad.exr", image);
+            }).find("channel 'du' is 3 x 6, expected 4 x 6"),
             std::string::npos);
-  EXPECT_NE(inputErrorOf([&] { pc::writeExr(dir / "empty.exr", pc::ExrImage{}); }).find("without channels"),
+  EXPECT_NE(pixelcloth::testing::inputErrorOf([&] {
+              pc::writeExr(dir / "empty.exr", pc::ExrImage{});
+            }).find("without channels"),
             std::string::npos);
   EXPECT_TRUE(fs::is_empty(dir));
 }

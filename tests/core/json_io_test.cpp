@@ -17,23 +17,6 @@ namespace pc = pixelcloth::core;
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
-
-std::string inputErrorOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const pc::InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError, got: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "expected InputError, nothing was thrown";
-  return {};
-}
-
-}  // namespace
-
 TEST(JsonIo, RoundTripKeepsEveryValue) {
   fs::path dir = pixelcloth::testing::freshDir("roundtrip");
   json manifest = {{"garment", "tshirt"}, {"counts", {{"train", 900}, {"test", 100}}},     {"seed", 12345678901234LL},
@@ -54,16 +37,16 @@ TEST(JsonIo, RoundTripKeepsEveryValue) {
 TEST(JsonIo, SyntaxErrorsGiveFileLineAndColumn) {
   fs::path dir = pixelcloth::testing::freshDir("syntax");
   std::ofstream(dir / "bad.json") << "{\n  \"a\": 1,\n  \"b\": tru\n}\n";
-  std::string message = inputErrorOf([&] { pc::readJson(dir / "bad.json"); });
+  std::string message = pixelcloth::testing::inputErrorOf([&] { pc::readJson(dir / "bad.json"); });
   EXPECT_EQ(message.rfind((dir / "bad.json").string() + ": invalid JSON at line 3, column ", 0), 0u) << message;
   std::ofstream(dir / "cut.json") << "{\"a\": [1, 2";
-  message = inputErrorOf([&] { pc::readJson(dir / "cut.json"); });
+  message = pixelcloth::testing::inputErrorOf([&] { pc::readJson(dir / "cut.json"); });
   EXPECT_EQ(message.rfind((dir / "cut.json").string() + ": invalid JSON at line 1, column 12 (byte 12)", 0), 0u)
       << message;
   std::ofstream(dir / "empty.json") << "";
-  message = inputErrorOf([&] { pc::readJson(dir / "empty.json"); });
+  message = pixelcloth::testing::inputErrorOf([&] { pc::readJson(dir / "empty.json"); });
   EXPECT_EQ(message.rfind((dir / "empty.json").string() + ": invalid JSON at line 1", 0), 0u) << message;
-  EXPECT_EQ(inputErrorOf([&] { pc::readJson(dir / "absent.json"); }),
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::readJson(dir / "absent.json"); }),
             (dir / "absent.json").string() + ": no such file");
 }
 
@@ -73,16 +56,18 @@ TEST(JsonIo, RequiredFieldsSayWhatIsMissingOrWrong) {
   EXPECT_EQ(pc::requireValue<int>(manifest, "seed", "manifest.json"), 7);
   EXPECT_EQ(pc::requireValue<double>(manifest, "seed", "manifest.json"), 7.0);  // an integer is a number
   EXPECT_EQ(pc::requireValue<std::string>(manifest, "garment", "manifest.json"), "tshirt");
-  EXPECT_EQ(inputErrorOf([&] { pc::requireField(manifest, "body", "manifest.json"); }),
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::requireField(manifest, "body", "manifest.json"); }),
             "manifest.json: missing field 'body'");
-  EXPECT_EQ(inputErrorOf([&] { pc::requireValue<int>(manifest, "garment", "manifest.json"); }),
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::requireValue<int>(manifest, "garment", "manifest.json"); }),
             "manifest.json: field 'garment' is a string \"tshirt\", expected an integer");
-  EXPECT_EQ(inputErrorOf([&] { pc::requireValue<int>(manifest, "scale", "manifest.json"); }),
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::requireValue<int>(manifest, "scale", "manifest.json"); }),
             "manifest.json: field 'scale' is number 0.5, expected an integer");
-  EXPECT_EQ(inputErrorOf([&] { pc::requireValue<double>(manifest, "garment", "manifest.json"); }),
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::requireValue<double>(manifest, "garment", "manifest.json"); }),
             "manifest.json: field 'garment' is string, expected a number");
-  EXPECT_EQ(inputErrorOf([&] { pc::requireValue<std::string>(manifest, "splits", "manifest.json"); }),
-            "manifest.json: field 'splits' is array, expected a string");
-  EXPECT_EQ(inputErrorOf([&] { pc::requireField(manifest["splits"], "train", "manifest.json: splits"); }),
+  EXPECT_EQ(
+      pixelcloth::testing::inputErrorOf([&] { pc::requireValue<std::string>(manifest, "splits", "manifest.json"); }),
+      "manifest.json: field 'splits' is array, expected a string");
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf(
+                [&] { pc::requireField(manifest["splits"], "train", "manifest.json: splits"); }),
             "manifest.json: splits: expected a JSON object, found array");
 }

@@ -18,20 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The message of the InputError `action` throws; fails the test when it throws nothing or something else.
-std::string inputErrorOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const pc::InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError, got: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "expected InputError, nothing was thrown";
-  return {};
-}
-
 fs::path writeFile(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
   return path;
@@ -154,7 +140,7 @@ TEST(MeshIo, NonManifoldObjIsRefused) {
   fs::path dir = pixelcloth::testing::freshDir("nonmanifold");
   // Three triangles share the edge 1-2: OpenMesh would duplicate the third one's vertices.
   writeFile(dir / "fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
-  std::string message = inputErrorOf([&] { pc::readMesh(dir / "fin.obj"); });
+  std::string message = pixelcloth::testing::inputErrorOf([&] { pc::readMesh(dir / "fin.obj"); });
   EXPECT_NE(message.find((dir / "fin.obj").string() +
                          ": 1 faces could not be added without duplicating vertices: the mesh is not manifold (e.g. "
                          "an edge shared by more than two faces)"),
@@ -168,14 +154,15 @@ TEST(MeshIo, NonManifoldPlyIsRefusedAndCannotBeWritten) {
             "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
             "element face 3\nproperty list uchar int vertex_indices\nend_header\n"
             "0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
-  EXPECT_NE(inputErrorOf([&] { pc::readMesh(dir / "fin.ply"); }).find("not manifold"), std::string::npos);
+  EXPECT_NE(pixelcloth::testing::inputErrorOf([&] { pc::readMesh(dir / "fin.ply"); }).find("not manifold"),
+            std::string::npos);
 
   pc::Mesh fin;
   fin.V.resize(5, 3);
   fin.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1;
   fin.F.resize(3, 3);
   fin.F << 0, 1, 2, 1, 0, 3, 0, 1, 4;
-  std::string message = inputErrorOf([&] { pc::writeMesh(dir / "out.obj", fin); });
+  std::string message = pixelcloth::testing::inputErrorOf([&] { pc::writeMesh(dir / "out.obj", fin); });
   EXPECT_NE(message.find("cannot write face 2"), std::string::npos) << message;
   EXPECT_FALSE(fs::exists(dir / "out.obj"));
 }
@@ -184,7 +171,7 @@ TEST(MeshIo, ObjFaultsAreNamedWithFileAndPlace) {
   fs::path dir = pixelcloth::testing::freshDir("faults");
   auto errorFor = [&](const std::string& name, const std::string& text) {
     writeFile(dir / name, text);
-    return inputErrorOf([&] { pc::readMesh(dir / name); });
+    return pixelcloth::testing::inputErrorOf([&] { pc::readMesh(dir / name); });
   };
   const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
   std::string file = (dir / "garment.obj").string();
@@ -225,14 +212,14 @@ TEST(MeshIo, ObjFaultsAreNamedWithFileAndPlace) {
 
 TEST(MeshIo, MissingGarbageAndTruncatedFilesAreNamed) {
   fs::path dir = pixelcloth::testing::freshDir("garbage");
-  std::string missing = inputErrorOf([&] { pc::readMesh(dir / "absent.obj"); });
+  std::string missing = pixelcloth::testing::inputErrorOf([&] { pc::readMesh(dir / "absent.obj"); });
   EXPECT_NE(missing.find((dir / "absent.obj").string() + ": no such file"), std::string::npos) << missing;
 
   std::string garbage;
   for (int i = 0; i < 3000; ++i) garbage.push_back(static_cast<char>((i * 7919 + 13) % 251 + 1));
   for (const char* name : {"g.obj", "g.ply", "g.off"}) {
     writeFile(dir / name, garbage);
-    std::string message = inputErrorOf([&] { pc::readMesh(dir / name); });
+    std::string message = pixelcloth::testing::inputErrorOf([&] { pc::readMesh(dir / name); });
     EXPECT_EQ(message.rfind((dir / name).string() + ": ", 0), 0u) << message;
   }
 
@@ -241,17 +228,19 @@ TEST(MeshIo, MissingGarbageAndTruncatedFilesAreNamed) {
     pc::writeMesh(dir / name, mesh);
     std::string bytes = pc::readTextFile(dir / name);
     writeFile(dir / name, bytes.substr(0, bytes.size() - 20));
-    std::string message = inputErrorOf([&] { pc::readMesh(dir / name); });
+    std::string message = pixelcloth::testing::inputErrorOf([&] { pc::readMesh(dir / name); });
     EXPECT_EQ(message.rfind((dir / name).string() + ": ", 0), 0u) << message;
   }
 }
 
 TEST(MeshIo, UnsupportedExtensionListsTheAcceptedOnes) {
   fs::path dir = pixelcloth::testing::freshDir("ext");
-  std::string message = inputErrorOf([&] { pc::writeMesh(dir / "m.stl", seamedGrid()); });
+  std::string message = pixelcloth::testing::inputErrorOf([&] { pc::writeMesh(dir / "m.stl", seamedGrid()); });
   EXPECT_NE(message.find("unsupported mesh format '.stl'; expected one of .obj, .ply, .off"), std::string::npos)
       << message;
-  EXPECT_NE(inputErrorOf([&] { pc::readMesh(dir / "m"); }).find("expected one of .obj, .ply, .off"), std::string::npos);
+  EXPECT_NE(
+      pixelcloth::testing::inputErrorOf([&] { pc::readMesh(dir / "m"); }).find("expected one of .obj, .ply, .off"),
+      std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "m.stl"));
 }
 
@@ -259,7 +248,7 @@ TEST(MeshIo, InvalidMeshIsNotWritten) {
   fs::path dir = pixelcloth::testing::freshDir("invalid");
   pc::Mesh mesh = seamedGrid();
   mesh.F(2, 1) = 17;
-  std::string message = inputErrorOf([&] { pc::writeMesh(dir / "bad.obj", mesh); });
+  std::string message = pixelcloth::testing::inputErrorOf([&] { pc::writeMesh(dir / "bad.obj", mesh); });
   EXPECT_NE(message.find("face 2 uses vertex 17"), std::string::npos) << message;
   EXPECT_TRUE(fs::is_empty(dir));
 }

@@ -21,19 +21,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string inputErrorOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const pc::InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError, got: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "expected InputError, nothing was thrown";
-  return {};
-}
-
 // A .npy file with a hand-written header (version 1.0, padded to 64 bytes) and `data` after it.
 fs::path writeRawNpy(const fs::path& path, const std::string& dict, const std::string& data, char major = 1) {
   std::string header = dict;
@@ -138,21 +125,23 @@ TEST(Npy, MatrixDtypeAndShapeAreChecked) {
   Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(100, 12);  // a concrete matrix: an expression is ambiguous
   pc::writeNpy(dir / "weights.npy", weights);
   std::string file = (dir / "weights.npy").string();
-  EXPECT_EQ(inputErrorOf([&] { pc::readNpyMatrixF(dir / "weights.npy"); }), file + ": dtype <f8, expected float32 <f4");
-  EXPECT_EQ(inputErrorOf([&] { pc::readNpyMatrixD(dir / "weights.npy", 15204, 12); }),
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::readNpyMatrixF(dir / "weights.npy"); }),
+            file + ": dtype <f8, expected float32 <f4");
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::readNpyMatrixD(dir / "weights.npy", 15204, 12); }),
             file + ": shape (100, 12), expected (15204, 12)");
-  EXPECT_EQ(inputErrorOf([&] { pc::readNpyMatrixD(dir / "weights.npy", -1, 3); }),
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::readNpyMatrixD(dir / "weights.npy", -1, 3); }),
             file + ": shape (100, 12), expected (any, 3)");
   pc::writeNpy(dir / "flat.npy", std::vector<double>(5, 1.0), {5});
-  EXPECT_EQ(inputErrorOf([&] { pc::readNpyMatrixD(dir / "flat.npy"); }),
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::readNpyMatrixD(dir / "flat.npy"); }),
             (dir / "flat.npy").string() + ": shape (5,), expected (any, any)");
   pc::NpyArray array = pc::readNpy(dir / "weights.npy");
-  EXPECT_EQ(inputErrorOf([&] { array.data<std::int64_t>(); }), file + ": dtype <f8, expected int64 <i8");
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { array.data<std::int64_t>(); }),
+            file + ": dtype <f8, expected int64 <i8");
 }
 
 TEST(Npy, MalformedFilesAreRefusedWithTheirFault) {
   fs::path dir = pixelcloth::testing::freshDir("malformed");
-  auto errorOf = [&](const fs::path& path) { return inputErrorOf([&] { pc::readNpy(path); }); };
+  auto errorOf = [&](const fs::path& path) { return pixelcloth::testing::inputErrorOf([&] { pc::readNpy(path); }); };
   auto file = [&](const char* name) { return (dir / name).string(); };
   const std::string two = floats({1, 2});
 
@@ -193,12 +182,12 @@ TEST(Npy, MalformedFilesAreRefusedWithTheirFault) {
 
 TEST(Npy, WritingInconsistentArraysIsRefused) {
   fs::path dir = pixelcloth::testing::freshDir("write");
-  EXPECT_EQ(inputErrorOf([&] {
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] {
               pc::writeNpy(dir / "a.npy", std::vector<float>(5), {2, 3});
             }),
             "npy array: 5 values for shape (2, 3) (6 elements)");
   pc::NpyArray array{"<f2", {1}, {0, 0}, {}};
-  EXPECT_EQ(inputErrorOf([&] { pc::writeNpy(dir / "b.npy", array); }),
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::writeNpy(dir / "b.npy", array); }),
             (dir / "b.npy").string() + ": unsupported dtype '<f2'; expected one of <f4, <f8, <i4, <i8, |u1");
   EXPECT_TRUE(fs::is_empty(dir));
 }
@@ -250,6 +239,8 @@ TEST(Npy, WeReadWhatNumpyWrites) {
   pc::NpyArray u1 = pc::readNpy(dir / "u1.npy");
   EXPECT_EQ(u1.dtype, "|u1");
   EXPECT_EQ(u1.data<std::uint8_t>()[1], 254);
-  EXPECT_NE(inputErrorOf([&] { pc::readNpy(dir / "fortran.npy"); }).find("fortran_order is True"), std::string::npos);
-  EXPECT_NE(inputErrorOf([&] { pc::readNpy(dir / "big.npy"); }).find("dtype >f8 is big-endian"), std::string::npos);
+  EXPECT_NE(pixelcloth::testing::inputErrorOf([&] { pc::readNpy(dir / "fortran.npy"); }).find("fortran_order is True"),
+            std::string::npos);
+  EXPECT_NE(pixelcloth::testing::inputErrorOf([&] { pc::readNpy(dir / "big.npy"); }).find("dtype >f8 is big-endian"),
+            std::string::npos);
 }

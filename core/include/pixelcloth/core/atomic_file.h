@@ -19,6 +19,10 @@ void writeTextAtomically(const std::filesystem::path& target, const std::string&
 /// Reads a whole file; throws `InputError` naming the file when it is missing or unreadable.
 std::string readTextFile(const std::filesystem::path& path);
 
+/// Checks, before any work is done, that `folder` can serve as an output folder: it is an existing folder or does not
+/// exist yet (it is created when the first file is written). Throws `InputError` when it is a file.
+void checkOutputFolder(const std::filesystem::path& folder);
+
 /// Creates `folder` (and parents) or throws `InputError` saying why it cannot be used as an output folder.
 void ensureOutputFolder(const std::filesystem::path& folder);
 

@@ -1,11 +1,10 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/skeleton.h"
@@ -15,9 +14,9 @@ namespace pixelcloth::core {
 /// One collision part of the body (DESIGN.md "Body"): a subset of faces that overlaps its neighbours
 /// around the shoulders, so every cloth vertex can collide against its primary part alone.
 struct BodyPart {
-  std::string name;          ///< "left_arm", "right_arm" or "torso"
-  std::vector<int> faces;    ///< face indices into the body mesh
-  std::vector<int> vertices; ///< vertices used by those faces, sorted
+  std::string name;           ///< "left_arm", "right_arm" or "torso"
+  std::vector<int> faces;     ///< face indices into the body mesh
+  std::vector<int> vertices;  ///< vertices used by those faces, sorted
 };
 
 /// A skinned body: closed manifold mesh in the rest T-pose, skeleton, skin weights, collision parts.
@@ -35,7 +34,7 @@ struct Body {
 
 /// Options of the built-in mannequin.
 struct MannequinOptions {
-  double shape = 0.0;        ///< girth in [-1, 2]: -1 thinner, 0 default, 2 thicker (paper's modified body shapes)
+  double shape = 0.0;          ///< girth in [-1, 2]: -1 thinner, 0 default, 2 thicker (paper's modified body shapes)
   double edgeLength = 0.0075;  ///< target triangle size, metres (about 15K vertices at the default)
   /// Throws InputError when an option is out of range.
   void validate() const;

@@ -28,13 +28,13 @@ namespace detail {
 /// Checks a condition on user input and throws `pixelcloth::core::InputError` when it fails.
 /// Stays on in release builds. The message is streamed:
 ///   PIXELCLOTH_CHECK(f < nv, path << ": face " << i << " uses vertex " << f << ", but the file has " << nv);
-#define PIXELCLOTH_CHECK(condition, message)                                             \
-  do {                                                                                   \
-    if (!(condition)) {                                                                  \
-      std::ostringstream pixelcloth_check_stream_;                                       \
-      pixelcloth_check_stream_ << message;                                               \
+#define PIXELCLOTH_CHECK(condition, message)                                                           \
+  do {                                                                                                 \
+    if (!(condition)) {                                                                                \
+      std::ostringstream pixelcloth_check_stream_;                                                     \
+      pixelcloth_check_stream_ << message;                                                             \
       ::pixelcloth::core::detail::throwInputError(pixelcloth_check_stream_.str(), __FILE__, __LINE__); \
-    }                                                                                    \
+    }                                                                                                  \
   } while (false)
 
 /// Unconditional failure with the same message style as PIXELCLOTH_CHECK.

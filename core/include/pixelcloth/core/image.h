@@ -1,11 +1,10 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <filesystem>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace pixelcloth::core {
 

@@ -1,9 +1,11 @@
 #pragma once
 
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "pixelcloth/core/error.h"
 
@@ -24,7 +26,19 @@ const nlohmann::json& requireField(const nlohmann::json& object, const std::stri
 
 namespace detail {
 template <typename T>
+struct IsVector : std::false_type {};
+template <typename U>
+struct IsVector<std::vector<U>> : std::true_type {};
+
+template <typename T>
 const char* jsonKindOf() {
+  if constexpr (IsVector<T>::value) {
+    using U = typename T::value_type;
+    if constexpr (std::is_integral_v<U> && !std::is_same_v<U, bool>) return "an array of integers";
+    if constexpr (std::is_arithmetic_v<U>) return "an array of numbers";
+    if constexpr (std::is_convertible_v<U, std::string>) return "an array of strings";
+    return "an array";
+  }
   if constexpr (std::is_same_v<T, bool>) return "true or false";
   if constexpr (std::is_arithmetic_v<T>) return std::is_integral_v<T> ? "an integer" : "a number";
   if constexpr (std::is_convertible_v<T, std::string>) return "a string";
@@ -41,6 +55,20 @@ T requireValue(const nlohmann::json& object, const std::string& key, const std::
   PIXELCLOTH_CHECK(!integerWanted || field.is_number_integer(),
                    context << ": field '" << key << "' is " << (field.is_number() ? "" : "a ") << field.type_name()
                            << " " << field.dump() << ", expected " << detail::jsonKindOf<T>());
+  if constexpr (detail::IsVector<T>::value) {
+    using U = typename T::value_type;
+    PIXELCLOTH_CHECK(field.is_array(), context << ": field '" << key << "' is " << field.type_name() << ", expected "
+                                               << detail::jsonKindOf<T>());
+    if constexpr (std::is_integral_v<U> && !std::is_same_v<U, bool>) {
+      for (size_t i = 0; i < field.size(); ++i) {
+        const nlohmann::json& item = field[i];
+        PIXELCLOTH_CHECK(item.is_number_integer() && item.get<long long>() >= std::numeric_limits<U>::min() &&
+                             item.get<long long>() <= std::numeric_limits<U>::max(),
+                         context << ": field '" << key << "' entry " << i << " is " << item.dump() << ", expected "
+                                 << detail::jsonKindOf<T>());
+      }
+    }
+  }
   try {
     return field.get<T>();
   } catch (const nlohmann::json::exception&) {

@@ -17,11 +17,11 @@ void logLine(LogLevel level, const std::string& line);
 }  // namespace pixelcloth::core
 
 /// Streams an informational line to stderr: PIXELCLOTH_INFO("built " << n << " triangles");
-#define PIXELCLOTH_INFO(message)                                                          \
-  do {                                                                                    \
-    if (::pixelcloth::core::logLevel() >= ::pixelcloth::core::LogLevel::Info) {           \
-      std::ostringstream pixelcloth_log_stream_;                                          \
-      pixelcloth_log_stream_ << message;                                                  \
+#define PIXELCLOTH_INFO(message)                                                                     \
+  do {                                                                                               \
+    if (::pixelcloth::core::logLevel() >= ::pixelcloth::core::LogLevel::Info) {                      \
+      std::ostringstream pixelcloth_log_stream_;                                                     \
+      pixelcloth_log_stream_ << message;                                                             \
       ::pixelcloth::core::logLine(::pixelcloth::core::LogLevel::Info, pixelcloth_log_stream_.str()); \
-    }                                                                                     \
+    }                                                                                                \
   } while (false)

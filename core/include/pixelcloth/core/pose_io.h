@@ -1,9 +1,8 @@
 #pragma once
 
 #include <filesystem>
-#include <vector>
-
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "pixelcloth/core/skeleton.h"
 

@@ -1,9 +1,8 @@
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "pixelcloth/core/image.h"
 
@@ -26,7 +25,7 @@ struct View {
   double elevationDegrees = 0.0;  ///< positive looks down from above
   int width = 512;
   int height = 512;
-  double margin = 0.06;           ///< fraction of the image kept free around the fitted bounds
+  double margin = 0.06;  ///< fraction of the image kept free around the fitted bounds
   Eigen::Vector3d background{1.0, 1.0, 1.0};
   /// Region to frame; when empty, the bounding box of all meshes drawn.
   Eigen::AlignedBox3d bounds;

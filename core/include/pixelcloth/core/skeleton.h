@@ -1,17 +1,16 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-
 namespace pixelcloth::core {
 
 /// The 10 posable joints, in the order of the pose vector (DESIGN.md "Pose vector").
-inline const std::array<std::string, 10> kPoseJoints = {"lower_back", "spine",      "spine1", "neck",  "l_shoulder",
-                                                        "l_arm",      "l_forearm",  "r_shoulder", "r_arm", "r_forearm"};
+inline const std::array<std::string, 10> kPoseJoints = {"lower_back", "spine",     "spine1",     "neck",  "l_shoulder",
+                                                        "l_arm",      "l_forearm", "r_shoulder", "r_arm", "r_forearm"};
 /// Number of floats in a pose vector: 10 row-major 3x3 rotations.
 inline constexpr int kPoseSize = 90;
 

@@ -1,0 +1,665 @@
+// Runs the real `pixelcloth` executable: each verb's outputs, and bad input refused with exit code 2, a message
+// naming the file or option and what was expected, and no half-written files.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <initializer_list>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../core/test_util.h"
+#include "pixelcloth/core/mesh.h"
+#include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/core/npy.h"
+
+namespace pixelcloth::apps {
+namespace {
+
+namespace fs = std::filesystem;
+using pixelcloth::testing::freshDir;
+
+/// The 10 posable joints, as `pixelcloth body --joints` requires them.
+const std::vector<std::string> kPoseJointNames = {"lower_back", "spine",     "spine1",     "neck",  "l_shoulder",
+                                                  "l_arm",      "l_forearm", "r_shoulder", "r_arm", "r_forearm"};
+
+// ---------------------------------------------------------------------------------------------------------------------
+// Running commands
+
+/// What one command did: its exit code and what it printed.
+struct CliRun {
+  std::string command;
+  int status = -1;  ///< WEXITSTATUS, or -1 when the command did not exit normally (signal)
+  std::string out;  ///< stdout
+  std::string err;  ///< stderr
+};
+
+std::ostream& operator<<(std::ostream& os, const CliRun& run) {
+  return os << "\n$ " << run.command << "\nexit code " << run.status << "\n--- stdout ---\n"
+            << run.out.substr(0, 4000) << "\n--- stderr ---\n"
+            << run.err.substr(0, 4000) << "\n";
+}
+
+/// One shell word: `s` in single quotes.
+std::string quote(const std::string& s) {
+  std::string quoted = "'";
+  for (char c : s) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void writeFile(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  ASSERT_TRUE(out.good()) << "cannot write " << path;
+}
+
+/// Runs a shell command line; stdout through a pipe, stderr through a temporary file.
+CliRun capture(const std::string& command) {
+  static int counter = 0;
+  fs::path errFile = fs::temp_directory_path() /
+                     ("pixelcloth-cli-test-stderr." + std::to_string(::getpid()) + "." + std::to_string(counter++));
+  CliRun run;
+  run.command = command;
+  FILE* pipe = ::popen((command + " 2>" + quote(errFile.string())).c_str(), "r");
+  if (pipe == nullptr) return run;
+  char buffer[4096];
+  for (size_t n; (n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0;) run.out.append(buffer, n);
+  const int raw = ::pclose(pipe);
+  run.status = raw != -1 && WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  run.err = readFile(errFile);
+  std::error_code ignored;
+  fs::remove(errFile, ignored);
+  return run;
+}
+
+/// Runs `pixelcloth ARGS...`, each argument passed as one word.
+CliRun pixelcloth(std::initializer_list<std::string> args) {
+  std::string command = quote(PIXELCLOTH_BINARY);
+  for (const std::string& arg : args) command += " " + quote(arg);
+  return capture(command);
+}
+
+/// Exit code 2 and a message on stderr that contains every one of `mentions`; no internal error.
+::testing::AssertionResult refused(const CliRun& run, const std::vector<std::string>& mentions) {
+  if (run.status != 2) return ::testing::AssertionFailure() << "expected exit code 2" << run;
+  if (run.err.find("internal error") != std::string::npos)
+    return ::testing::AssertionFailure() << "bad input reported as an internal error" << run;
+  for (const std::string& mention : mentions) {
+    if (run.err.find(mention) == std::string::npos)
+      return ::testing::AssertionFailure() << "the message does not mention '" << mention << "'" << run;
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// Files
+
+/// Every regular file under `dir`, relative and sorted; empty when `dir` does not exist.
+std::vector<std::string> filesUnder(const fs::path& dir) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    if (entry.is_regular_file()) files.push_back(fs::relative(entry.path(), dir).string());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::string listing(const std::vector<std::string>& files) {
+  std::string text;
+  for (const auto& f : files) text += "\n  " + f;
+  return text.empty() ? " (none)" : text;
+}
+
+/// No temporary `NAME.tmp-PID` left by an atomic write anywhere under `dir`.
+::testing::AssertionResult noTemporaries(const fs::path& dir) {
+  for (const std::string& file : filesUnder(dir)) {
+    if (file.find(".tmp-") != std::string::npos)
+      return ::testing::AssertionFailure() << dir << " holds a half-written file: " << file;
+  }
+  return ::testing::AssertionSuccess();
+}
+
+::testing::AssertionResult isPng(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return ::testing::AssertionFailure() << path << " does not exist";
+  std::string head = readFile(path).substr(0, 8);
+  if (head != std::string("\x89PNG\r\n\x1a\n", 8))
+    return ::testing::AssertionFailure() << path << " does not start with the PNG signature";
+  return ::testing::AssertionSuccess();
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+std::string joinLines(const std::vector<std::string>& lines) {
+  std::string text;
+  for (const auto& line : lines) text += line + "\n";
+  return text;
+}
+
+bool startsWith(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
+
+/// A Python 3 interpreter with NumPy ("" when none): the system one first (a pyenv `python3` may lack NumPy).
+std::string pythonWithNumpy() {
+  for (std::string candidate : {"/usr/bin/python3", "python3"}) {
+    if (capture(candidate + " -c 'import numpy'").status == 0) return candidate;
+  }
+  return "";
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// The shared body
+
+/// The body folder made by `pixelcloth body --out DIR` (about 5 s), shared read-only by every test.
+///
+/// gtest_discover_tests runs each test in its own process, so the folder is cached across processes: it is named
+/// after the binary's path, size and modification time, built under a pid-named folder and renamed into place only
+/// when complete. A rebuilt binary gets a new folder; the folders of its older builds are removed.
+struct SharedBody {
+  fs::path folder;
+  CliRun run;  ///< the `pixelcloth body` run, when this process made the folder
+  bool ok = false;
+};
+
+const SharedBody& sharedBody() {
+  static const SharedBody body = [] {
+    SharedBody result;
+    const fs::path binary(PIXELCLOTH_BINARY);
+    std::error_code ec;
+    const auto modified = static_cast<unsigned long long>(fs::last_write_time(binary, ec).time_since_epoch().count());
+    const std::string stamp = std::to_string(fs::file_size(binary, ec)) + "-" + std::to_string(modified);
+    const fs::path root = fs::temp_directory_path() / "pixelcloth-tests";
+    const std::string prefix = "apps-body-" + std::to_string(std::hash<std::string>{}(binary.string())) + "-";
+    result.folder = root / (prefix + stamp);
+    if (fs::is_directory(result.folder, ec)) {
+      result.ok = true;
+      return result;
+    }
+    const fs::path building = root / ("apps-building-body." + std::to_string(::getpid()));
+    fs::remove_all(building, ec);
+    fs::create_directories(root, ec);
+    result.run = pixelcloth({"body", "--out", building.string()});
+    result.ok = result.run.status == 0;
+    if (!result.ok) return result;
+    fs::rename(building, result.folder, ec);
+    if (ec) fs::remove_all(building, ec);  // another process got there first; its folder is just as complete
+    for (const auto& entry : fs::directory_iterator(root, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (startsWith(name, prefix) && entry.path() != result.folder) fs::remove_all(entry.path(), ec);
+    }
+    return result;
+  }();
+  return body;
+}
+
+/// Positions of the 10 pose joints in a body folder's skeleton.json, as `pixelcloth body --joints` reads them.
+nlohmann::json jointsOf(const fs::path& bodyFolder) {
+  nlohmann::json skeleton = nlohmann::json::parse(readFile(bodyFolder / "skeleton.json"));
+  nlohmann::json joints = nlohmann::json::object();
+  for (const auto& joint : skeleton.at("joints")) {
+    const std::string name = joint.at("name").get<std::string>();
+    if (std::find(kPoseJointNames.begin(), kPoseJointNames.end(), name) != kPoseJointNames.end())
+      joints[name] = joint.at("position");
+  }
+  return {{"joints", joints}};
+}
+
+/// Tests that run the CLI in folders of their own (removed again when the test passes).
+class CliTest : public ::testing::Test {
+ protected:
+  void TearDown() override {
+    if (HasFailure()) return;  // keep the evidence
+    std::error_code ignored;
+    for (const auto& dir : dirs_) fs::remove_all(dir, ignored);
+  }
+  /// A fresh empty folder for this test.
+  fs::path dir(const std::string& name) {
+    dirs_.push_back(freshDir(name));
+    return dirs_.back();
+  }
+
+ private:
+  std::vector<fs::path> dirs_;
+};
+
+/// Tests that need a body folder.
+class CliBodyTest : public CliTest {
+ protected:
+  void SetUp() override {
+    const SharedBody& shared = sharedBody();
+    ASSERT_TRUE(shared.ok) << "pixelcloth body failed; every body test needs it" << shared.run;
+    body_ = shared.folder;
+  }
+  /// A private copy of the shared body folder, for a test that damages it.
+  fs::path copyOfBody() {
+    fs::path copy = dir("body");
+    fs::copy(body_, copy, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+    return copy;
+  }
+  int bodyVertices() const { return static_cast<int>(core::readMesh(body_ / "body.obj").numVertices()); }
+
+  fs::path body_;
+};
+
+// ---------------------------------------------------------------------------------------------------------------------
+// The command line itself
+
+TEST_F(CliTest, NoVerbExitsTwo) {
+  CliRun run = pixelcloth({});
+  EXPECT_EQ(run.status, 2) << run;
+  EXPECT_NE((run.out + run.err).find("subcommand"), std::string::npos) << run;
+}
+
+TEST_F(CliTest, UnknownVerbExitsTwo) {
+  CliRun run = pixelcloth({"drape"});
+  EXPECT_EQ(run.status, 2) << run;
+}
+
+TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> verbs = {
+      {"body", {"--out", "--shape", "--corrupt-weights", "--corrupt-fraction", "--import", "--joints"}},
+      {"garment", {"kind", "tshirt", "necktie", "--out", "--vertices"}},
+      {"pose", {"--body", "--pose", "--random", "--seed", "--amount", "--out"}},
+      {"demo", {"--out", "--poses", "--seed"}},
+      {"bench", {"--repeats"}},
+  };
+  for (const auto& [verb, options] : verbs) {
+    SCOPED_TRACE(verb);
+    CliRun run = pixelcloth({verb, "--help"});
+    EXPECT_EQ(run.status, 0) << run;
+    for (const std::string& option : options) EXPECT_NE(run.out.find(option), std::string::npos) << option << run;
+  }
+  CliRun top = pixelcloth({"--help"});
+  EXPECT_EQ(top.status, 0) << top;
+  for (const auto& [verb, options] : verbs) EXPECT_NE(top.out.find(verb), std::string::npos) << verb << top;
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// body
+
+TEST_F(CliBodyTest, BodyWritesFolderWithNormalisedWeights) {
+  for (const char* name : {"body.obj", "skeleton.json", "weights.npy", "parts.json"})
+    EXPECT_TRUE(fs::is_regular_file(body_ / name)) << name << " missing; the folder has" << listing(filesUnder(body_));
+  EXPECT_TRUE(isPng(body_ / "body.png"));
+  EXPECT_TRUE(noTemporaries(body_));
+  const int vertices = bodyVertices();
+  ASSERT_GT(vertices, 1000);
+
+  const std::string python = pythonWithNumpy();
+  if (python.empty()) GTEST_SKIP() << "no Python with NumPy: weights.npy not checked with numpy.load";
+  CliRun run =
+      capture(python + " -c " +
+              quote("import sys, numpy\n"
+                    "a = numpy.load(sys.argv[1])\n"
+                    "print(a.shape[0], a.shape[1], a.dtype, float(abs(a.sum(axis=1) - 1).max()), float(a.min()))") +
+              " " + quote((body_ / "weights.npy").string()));
+  ASSERT_EQ(run.status, 0) << run;
+  std::istringstream in(run.out);
+  int rows = 0, cols = 0;
+  std::string dtype;
+  double rowSumError = 1, minimum = -1;
+  in >> rows >> cols >> dtype >> rowSumError >> minimum;
+  EXPECT_EQ(rows, vertices) << run;
+  EXPECT_EQ(cols, 12) << run;
+  EXPECT_EQ(dtype, "float32") << run;
+  EXPECT_LT(rowSumError, 1e-5) << run;
+  EXPECT_GE(minimum, 0.0) << run;
+}
+
+TEST_F(CliTest, BodyRefusesShapeOutOfRange) {
+  fs::path out = dir("out") / "body";
+  EXPECT_TRUE(refused(pixelcloth({"body", "--out", out.string(), "--shape", "5"}), {"--shape", "5", "not in range"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliTest, BodyRefusesUnknownCorruptMode) {
+  fs::path out = dir("out") / "body";
+  EXPECT_TRUE(refused(pixelcloth({"body", "--out", out.string(), "--corrupt-weights", "legs"}),
+                      {"--corrupt-weights", "legs", "torso"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliTest, BodyImportNamesMissingMesh) {
+  fs::path work = dir("work");
+  fs::path joints = work / "j.json";
+  nlohmann::json positions = nlohmann::json::object();
+  for (const auto& name : kPoseJointNames) positions[name] = {0.0, 1.2, 0.0};
+  writeFile(joints, nlohmann::json{{"joints", positions}}.dump());
+  fs::path out = work / "out";
+  fs::path missing = work / "missing.obj";
+  EXPECT_TRUE(
+      refused(pixelcloth({"body", "--import", missing.string(), "--joints", joints.string(), "--out", out.string()}),
+              {missing.string(), "no such file"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliTest, BodyImportNeedsJoints) {
+  fs::path out = dir("out") / "body";
+  EXPECT_TRUE(refused(pixelcloth({"body", "--import", "mesh.obj", "--out", out.string()}), {"--import", "--joints"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliBodyTest, ImportRefusesOpenMesh) {
+  fs::path work = dir("work");
+  // The mannequin without its first five faces: a hole.
+  std::vector<std::string> kept;
+  int dropped = 0;
+  for (const std::string& line : lines(readFile(body_ / "body.obj"))) {
+    if (startsWith(line, "f ") && dropped < 5) {
+      ++dropped;
+      continue;
+    }
+    kept.push_back(line);
+  }
+  ASSERT_EQ(dropped, 5);
+  fs::path mesh = work / "open.obj", joints = work / "joints.json", out = work / "out";
+  writeFile(mesh, joinLines(kept));
+  writeFile(joints, jointsOf(body_).dump(2));
+  EXPECT_TRUE(
+      refused(pixelcloth({"body", "--import", mesh.string(), "--joints", joints.string(), "--out", out.string()}),
+              {mesh.string(), "closed and manifold"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliBodyTest, ImportRefusesUnknownJoint) {
+  fs::path work = dir("work");
+  nlohmann::json joints = jointsOf(body_);
+  joints["joints"]["l_elbow"] = {0.5, 1.45, 0.0};
+  fs::path jointsFile = work / "joints.json", out = work / "out";
+  writeFile(jointsFile, joints.dump(2));
+  EXPECT_TRUE(refused(pixelcloth({"body", "--import", (body_ / "body.obj").string(), "--joints", jointsFile.string(),
+                                  "--out", out.string()}),
+                      {jointsFile.string(), "l_elbow"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliBodyTest, ImportRefusesJointOutsideBody) {
+  fs::path work = dir("work");
+  nlohmann::json joints = jointsOf(body_);
+  joints["joints"]["neck"] = {0.0, 1.5, 2.0};  // two metres in front of the chest
+  fs::path jointsFile = work / "joints.json", out = work / "out";
+  writeFile(jointsFile, joints.dump(2));
+  fs::path mesh = body_ / "body.obj";
+  EXPECT_TRUE(
+      refused(pixelcloth({"body", "--import", mesh.string(), "--joints", jointsFile.string(), "--out", out.string()}),
+              {mesh.string(), "neck", "outside"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliBodyTest, ImportRefusesJointCoordinateTooLargeForADouble) {
+  fs::path work = dir("work");
+  std::string text = jointsOf(body_).dump(2);
+  const size_t neck = text.find("\"neck\"");
+  ASSERT_NE(neck, std::string::npos);
+  const size_t x = text.find('[', neck) + 1;
+  text.replace(x, text.find(',', x) - x, "1e400");  // valid JSON, but no double holds it
+  fs::path jointsFile = work / "joints.json", out = work / "out";
+  writeFile(jointsFile, text);
+  EXPECT_TRUE(refused(pixelcloth({"body", "--import", (body_ / "body.obj").string(), "--joints", jointsFile.string(),
+                                  "--out", out.string()}),
+                      {jointsFile.string(), "1e400"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliBodyTest, ImportRefusesNanCoordinate) {
+  fs::path work = dir("work");
+  std::vector<std::string> text = lines(readFile(body_ / "body.obj"));
+  auto firstVertex = std::find_if(text.begin(), text.end(), [](const std::string& l) { return startsWith(l, "v "); });
+  ASSERT_NE(firstVertex, text.end());
+  *firstVertex = "v nan 0 0";
+  fs::path mesh = work / "nan.obj", joints = work / "joints.json", out = work / "out";
+  writeFile(mesh, joinLines(text));
+  writeFile(joints, jointsOf(body_).dump(2));
+  EXPECT_TRUE(
+      refused(pixelcloth({"body", "--import", mesh.string(), "--joints", joints.string(), "--out", out.string()}),
+              {mesh.string(), "vertex 1"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliBodyTest, ImportOfMannequinWritesBodyFolder) {
+  fs::path work = dir("work");
+  fs::path joints = work / "joints.json", out = work / "out";
+  writeFile(joints, jointsOf(body_).dump(2));
+  CliRun run = pixelcloth(
+      {"body", "--import", (body_ / "body.obj").string(), "--joints", joints.string(), "--out", out.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  for (const char* name : {"body.obj", "skeleton.json", "weights.npy", "parts.json"})
+    EXPECT_TRUE(fs::is_regular_file(out / name)) << name << " missing; the folder has" << listing(filesUnder(out));
+  EXPECT_TRUE(isPng(out / "body.png"));
+  EXPECT_TRUE(noTemporaries(out));
+  core::NpyArray weights = core::readNpy(out / "weights.npy");
+  EXPECT_EQ(weights.dtype, "<f4");
+  EXPECT_EQ(weights.shape, (std::vector<std::int64_t>{bodyVertices(), 12}));
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// pose
+
+TEST_F(CliBodyTest, PoseRandomWritesMeshesAndPoseArray) {
+  fs::path out = dir("out") / "posed";
+  CliRun run = pixelcloth({"pose", "--body", body_.string(), "--random", "3", "--seed", "1", "--out", out.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  const int vertices = bodyVertices();
+  for (const char* name : {"posed_000.obj", "posed_001.obj", "posed_002.obj"}) {
+    ASSERT_TRUE(fs::is_regular_file(out / name)) << name << " missing; the folder has" << listing(filesUnder(out));
+    EXPECT_EQ(core::readMesh(out / name).numVertices(), vertices) << name;
+  }
+  EXPECT_FALSE(fs::exists(out / "posed_003.obj"));
+  core::NpyArray poses = core::readNpy(out / "poses.npy");
+  EXPECT_EQ(poses.dtype, "<f4");
+  EXPECT_EQ(poses.shape, (std::vector<std::int64_t>{3, 90}));
+  nlohmann::json list = nlohmann::json::parse(readFile(out / "poses.json"));
+  ASSERT_TRUE(list.contains("poses")) << list.dump().substr(0, 500);
+  EXPECT_EQ(list["poses"].size(), 3u);
+  EXPECT_TRUE(isPng(out / "posed.png"));
+  EXPECT_TRUE(noTemporaries(out));
+}
+
+TEST_F(CliBodyTest, PoseRefusesWeightsOfWrongVertexCount) {
+  fs::path body = copyOfBody(), out = dir("out") / "posed";
+  core::writeNpy(body / "weights.npy", Eigen::MatrixXf::Constant(100, 12, 1.0f / 12).eval());
+  EXPECT_TRUE(
+      refused(pixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
+              {(body / "weights.npy").string(), "(100, 12)", "expected (" + std::to_string(bodyVertices()) + ", 12)"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliBodyTest, PoseRefusesTruncatedWeights) {
+  fs::path body = copyOfBody(), out = dir("out") / "posed";
+  std::string bytes = readFile(body / "weights.npy");
+  writeFile(body / "weights.npy", bytes.substr(0, bytes.size() / 2));
+  EXPECT_TRUE(refused(pixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
+                      {(body / "weights.npy").string(), "truncated"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliBodyTest, PoseRefusesFloat64Weights) {
+  fs::path body = copyOfBody(), out = dir("out") / "posed";
+  core::writeNpy(body / "weights.npy", Eigen::MatrixXd::Constant(bodyVertices(), 12, 1.0 / 12).eval());
+  EXPECT_TRUE(refused(pixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
+                      {(body / "weights.npy").string(), "<f8", "float32"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliTest, PoseRefusesMissingBodyFolder) {
+  fs::path work = dir("work");
+  fs::path body = work / "no-such-body", out = work / "posed";
+  EXPECT_TRUE(refused(pixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
+                      {body.string(), "body folder"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliBodyTest, PoseRefusesInvalidSkeletonJson) {
+  fs::path body = copyOfBody(), out = dir("out") / "posed";
+  writeFile(body / "skeleton.json", "{\"joints\": [ {\"name\": \"root\", ");
+  EXPECT_TRUE(refused(pixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
+                      {(body / "skeleton.json").string(), "JSON"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+/// Runs `pixelcloth pose --pose FILE` on the shared body with `pose` written to FILE.
+class CliPoseFileTest : public CliBodyTest {
+ protected:
+  CliRun poseWith(const std::string& text) {
+    fs::path work = dir("work");
+    poseFile_ = work / "p.json";
+    out_ = work / "posed";
+    writeFile(poseFile_, text);
+    return pixelcloth({"pose", "--body", body_.string(), "--pose", poseFile_.string(), "--out", out_.string()});
+  }
+  CliRun poseWith(const nlohmann::json& pose) { return poseWith(pose.dump()); }
+  fs::path poseFile_, out_;
+};
+
+TEST_F(CliPoseFileTest, RefusesUnknownJoint) {
+  CliRun run = poseWith({{"joints", {{"l_elbow", {{"euler_deg", {0, 0, -60}}}}}}});
+  EXPECT_TRUE(refused(run, {poseFile_.string(), "l_elbow"}));
+  EXPECT_TRUE(filesUnder(out_).empty()) << listing(filesUnder(out_));
+}
+
+TEST_F(CliPoseFileTest, RefusesMatrixThatIsNotARotation) {
+  CliRun run = poseWith({{"joints", {{"neck", {{"rotation", std::vector<double>(9, 2.0)}}}}}});
+  EXPECT_TRUE(refused(run, {poseFile_.string(), "neck", "rotation"}));
+  EXPECT_TRUE(filesUnder(out_).empty()) << listing(filesUnder(out_));
+}
+
+TEST_F(CliPoseFileTest, RefusesPoseVectorOfTwos) {
+  CliRun run = poseWith({{"pose", std::vector<double>(90, 2.0)}});
+  EXPECT_TRUE(refused(run, {poseFile_.string(), "rotation"}));
+  EXPECT_TRUE(filesUnder(out_).empty()) << listing(filesUnder(out_));
+}
+
+TEST_F(CliPoseFileTest, RefusesPoseVectorOf89Numbers) {
+  std::vector<double> pose;
+  for (int k = 0; k < 10; ++k) pose.insert(pose.end(), {1, 0, 0, 0, 1, 0, 0, 0, 1});
+  pose.pop_back();
+  CliRun run = poseWith({{"pose", pose}});
+  EXPECT_TRUE(refused(run, {poseFile_.string(), "90", "89"}));
+  EXPECT_TRUE(filesUnder(out_).empty()) << listing(filesUnder(out_));
+}
+
+/// JSON has no NaN or infinity, but a number too large for a double is valid JSON: nlohmann throws
+/// out_of_range.406 for it, not parse_error.
+TEST_F(CliPoseFileTest, RefusesNumberTooLargeForADouble) {
+  CliRun run = poseWith(std::string(R"({"joints": {"neck": {"euler_deg": [0, 0, 1e400]}}})"));
+  EXPECT_TRUE(refused(run, {poseFile_.string(), "1e400"}));
+  EXPECT_TRUE(filesUnder(out_).empty()) << listing(filesUnder(out_));
+}
+
+TEST_F(CliPoseFileTest, LoweringTheLeftArmLowersTheLeftHand) {
+  CliRun run = poseWith({{"joints", {{"l_arm", {{"euler_deg", {0, 0, -60}}}}}}});
+  ASSERT_EQ(run.status, 0) << run;
+  core::Mesh rest = core::readMesh(body_ / "body.obj");
+  core::Mesh posed = core::readMesh(out_ / "posed_000.obj");
+  ASSERT_EQ(posed.numVertices(), rest.numVertices());
+  ASSERT_EQ(posed.numFaces(), rest.numFaces());
+  Eigen::Index leftTip = 0, rightTip = 0;  // the wearer's left is +x
+  rest.V.col(0).maxCoeff(&leftTip);
+  rest.V.col(0).minCoeff(&rightTip);
+  // Arm from the shoulder to the fingertips is ~0.7 m: lowered by 60 degrees, the tip drops by about 0.6 m.
+  EXPECT_LT(posed.V(leftTip, 1), rest.V(leftTip, 1) - 0.4)
+      << "left hand tip y: rest " << rest.V(leftTip, 1) << ", posed " << posed.V(leftTip, 1);
+  EXPECT_NEAR(posed.V(rightTip, 1), rest.V(rightTip, 1), 1e-4) << "the right arm stays at rest";
+  EXPECT_TRUE(isPng(out_ / "posed.png"));
+  EXPECT_TRUE(noTemporaries(out_));
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// garment
+
+TEST_F(CliTest, GarmentTShirtWritesMeshWithUvs) {
+  fs::path out = dir("out") / "tshirt";
+  CliRun run = pixelcloth({"garment", "tshirt", "--out", out.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  ASSERT_TRUE(fs::is_regular_file(out / "garment.obj")) << listing(filesUnder(out));
+  int texcoords = 0, faces = 0;
+  for (const std::string& line : lines(readFile(out / "garment.obj"))) {
+    texcoords += startsWith(line, "vt ");
+    faces += startsWith(line, "f ");
+  }
+  EXPECT_GT(texcoords, 0);
+  EXPECT_GT(faces, 0);
+  EXPECT_NO_THROW(nlohmann::json::parse(readFile(out / "garment.json")));
+  EXPECT_TRUE(isPng(out / "pattern.png"));
+  EXPECT_TRUE(isPng(out / "garment.png"));
+  EXPECT_TRUE(noTemporaries(out));
+}
+
+TEST_F(CliTest, GarmentRefusesUnknownKind) {
+  fs::path out = dir("out") / "skirt";
+  EXPECT_TRUE(refused(pixelcloth({"garment", "skirt", "--out", out.string()}), {"skirt", "tshirt", "necktie"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliTest, GarmentRefusesFileAsOutputFolder) {
+  fs::path work = dir("work");
+  fs::path file = work / "F";
+  writeFile(file, "not a folder\n");
+  EXPECT_TRUE(refused(pixelcloth({"garment", "tshirt", "--out", file.string()}), {file.string(), "not a folder"}));
+  EXPECT_EQ(readFile(file), "not a folder\n");
+  EXPECT_EQ(filesUnder(work), std::vector<std::string>{"F"});
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// bench and demo
+
+TEST_F(CliTest, BenchPrintsOnlyJsonLines) {
+  CliRun run = pixelcloth({"bench", "--repeats", "1"});
+  ASSERT_EQ(run.status, 0) << run;
+  int figures = 0;
+  for (const std::string& line : lines(run.out)) {
+    SCOPED_TRACE(line);
+    nlohmann::json figure = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
+    ASSERT_TRUE(figure.is_object()) << "not a JSON object";
+    for (const char* key : {"name", "value", "unit", "goal"}) EXPECT_TRUE(figure.contains(key)) << key;
+    EXPECT_TRUE(figure["name"].is_string());
+    EXPECT_TRUE(figure["value"].is_number());
+    EXPECT_TRUE(figure["unit"].is_string());
+    EXPECT_TRUE(figure["goal"].is_number());
+    ++figures;
+  }
+  EXPECT_GT(figures, 0) << run;
+}
+
+TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
+  fs::path out = dir("out") / "report";
+  CliRun run = pixelcloth({"demo", "--out", out.string(), "--poses", "2"});
+  ASSERT_EQ(run.status, 0) << run;
+  ASSERT_TRUE(fs::is_regular_file(out / "index.html")) << listing(filesUnder(out));
+  EXPECT_NO_THROW(nlohmann::json::parse(readFile(out / "report.json")));
+  const std::string html = readFile(out / "index.html");
+  const std::regex img(R"(<img[^>]*\ssrc\s*=\s*['"]([^'"]+)['"])", std::regex::icase);
+  int pictures = 0;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), img); it != std::sregex_iterator(); ++it) {
+    const std::string src = (*it)[1].str();
+    EXPECT_TRUE(isPng(out / src)) << "index.html shows " << src;
+    ++pictures;
+  }
+  EXPECT_GT(pictures, 0) << "index.html shows no pictures";
+  EXPECT_TRUE(noTemporaries(out));
+}
+
+}  // namespace
+}  // namespace pixelcloth::apps

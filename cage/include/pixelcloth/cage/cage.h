@@ -1,0 +1,59 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace pixelcloth::cage {
+
+/// What a cage curve is (paper section 3): a sewn seam, a body loop (chest, waist, bicep), a centre
+/// line, a garment opening (hem, neckline, sleeve hem), or another line that splits patches.
+enum class CurveKind { Seam, Loop, CentreLine, Opening, Split };
+
+/// "seam", "loop", "centre_line", "opening", "split".
+const char* curveKindName(CurveKind kind);
+/// Inverse of curveKindName; throws InputError listing the names.
+CurveKind curveKindFromName(const std::string& name, const std::string& context);
+
+/// One cage curve: an ordered chain of mesh vertices along mesh edges.
+struct CageCurve {
+  std::string name;  ///< e.g. "side_left", "chest_front", "centre_front", "hem"
+  CurveKind kind = CurveKind::Seam;
+  bool closed = false;        ///< a closed curve continues from the last vertex back to the first
+  std::vector<int> vertices;  ///< mesh vertex indices; consecutive ones (and last-first when closed) share an edge
+};
+
+/// A junction of the cage: a mesh vertex where curves meet or where an open curve ends.
+struct CageNode {
+  std::string name;  ///< stable name, e.g. "armpit_left", "neck_side_left", or "<curve>:<end>" when unnamed
+  int vertex = -1;   ///< mesh vertex index
+};
+
+/// The cage of a mesh (garment or body): its curves and their junctions.
+struct Cage {
+  std::vector<CageNode> nodes;
+  std::vector<CageCurve> curves;
+
+  /// Curve by name, or nullptr.
+  const CageCurve* findCurve(const std::string& name) const;
+  /// Node index by name, or -1.
+  int findNode(const std::string& name) const;
+  /// Every mesh edge of every curve, as (min, max) vertex pairs.
+  std::vector<std::pair<int, int>> edges() const;
+  /// Throws InputError (prefixed with `context`) when a curve has fewer than 2 vertices, repeats a vertex, uses a
+  /// vertex out of range, or has consecutive vertices that share no edge of `F`; or when a node's vertex is not on
+  /// any curve.
+  void validate(const Eigen::MatrixX3i& F, int numVertices, const std::string& context = "cage") const;
+};
+
+/// Nodes derived from curves: every endpoint of an open curve and every vertex shared by two or more curves,
+/// named "<curveA>/<curveB>" (sorted names of the first two curves through it), or "<curve>:<vertex>" for an end.
+std::vector<CageNode> junctions(const std::vector<CageCurve>& curves);
+
+/// {"nodes": [{"name", "vertex"}], "curves": [{"name", "kind", "closed", "vertices"}]}
+nlohmann::json toJson(const Cage& cage);
+Cage cageFromJson(const nlohmann::json& json, const std::string& context);
+
+}  // namespace pixelcloth::cage

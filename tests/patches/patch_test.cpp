@@ -42,3 +42,24 @@ TEST(Segmentation, ArmholeSeamsCutTheSleevesOff) {
     EXPECT_EQ(mesh.F.rows(), static_cast<int>(p.faces.size()));
   }
 }
+
+#include "pixelcloth/patches/frame.h"
+
+TEST(Frame, LayoutFitsAndBothSidesShareTheScale) {
+  pc::Garment shirt = pc::makeTShirt();
+  pp::ImageFrame front = pp::layoutFrame(shirt, 0, 512), back = pp::layoutFrame(shirt, 1, 512);
+  EXPECT_DOUBLE_EQ(front.metresPerPixel, back.metresPerPixel);
+  for (int l = 0; l < 2; ++l) {
+    pp::ImageFrame frame = pp::layoutFrame(shirt, l, 512);
+    Eigen::AlignedBox2d box = shirt.layoutBounds(l);
+    for (Eigen::Vector2d corner : {box.min(), box.max()}) {
+      Eigen::Vector2d p = frame.toPixel(corner);
+      EXPECT_GE(p.minCoeff(), 0.0);
+      EXPECT_LE(p.maxCoeff(), 512.0);
+      EXPECT_LT((frame.toPattern(p) - corner).norm(), 1e-12);
+    }
+  }
+  // v up in pattern space is up in the picture: the top of the layout has the smaller row.
+  Eigen::AlignedBox2d box = shirt.layoutBounds(0);
+  EXPECT_LT(front.toPixel(box.max()).y(), front.toPixel(box.min()).y());
+}

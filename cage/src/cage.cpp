@@ -100,7 +100,9 @@ std::vector<CageNode> junctions(const std::vector<CageCurve>& curves) {
   for (auto& [v, unused] : named) {
     std::vector<std::string> names = through[v];
     std::sort(names.begin(), names.end());
-    std::string name = names.size() >= 2 ? names[0] + "/" + names[1] : names[0] + ":" + std::to_string(v);
+    std::string name;
+    for (const std::string& n : names) name += (name.empty() ? "" : "/") + n;
+    if (names.size() < 2) name += ":" + std::to_string(v);
     nodes.push_back({name, v});
   }
   return nodes;

@@ -49,7 +49,9 @@ struct Cage {
 };
 
 /// Nodes derived from curves: every endpoint of an open curve and every vertex shared by two or more curves,
-/// named "<curveA>/<curveB>" (sorted names of the first two curves through it), or "<curve>:<vertex>" for an end.
+/// named by every curve through it, sorted and joined by '/' ("armhole_back_left/armhole_front_left/side_left/
+/// underarm_left"), or "<curve>:<vertex>" for the end of a curve that meets no other. A garment cage and a body cage
+/// built with the same curve names therefore give matching node names.
 std::vector<CageNode> junctions(const std::vector<CageCurve>& curves);
 
 /// {"nodes": [{"name", "vertex"}], "curves": [{"name", "kind", "closed", "vertices"}]}

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <memory>
 
+#include "pixelcloth/cage/body_cage.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/body.h"
 #include "pixelcloth/core/garment.h"
@@ -118,6 +119,17 @@ void runDemo(const DemoArgs& args) {
               " vertices, closed and manifold): shaded with its skeleton; bone-heat skin weights (a colour "
               "per joint); collision parts (left arm red, right arm blue, torso grey, overlaps purple); side.",
           {"body/body.png"});
+
+  steps.run("body cage: loops, centre and side lines, armholes", [&] {
+    cage::Cage bodyCage = cage::bodyCage(body);
+    writeJson(out / "body" / "cage.json", cage::toJson(bodyCage));
+    writePng(out / "body" / "cage.png", cage::renderCageOnMesh(body.mesh, bodyCage));
+    report["body_cage"] = {{"curves", bodyCage.curves.size()}, {"nodes", bodyCage.nodes.size()}};
+  });
+  section("Body cage", "The cage on the mannequin, where the T-shirt's seams and loops will sit: chest, waist, hem, "
+                       "bicep and sleeve-hem loops (red / black), centre lines (blue), side, shoulder and armhole "
+                       "lines (green); yellow dots are junctions, named like the shirt's.",
+          {"body/cage.png"});
 
   steps.run("body shapes: thinner (-1), default (0), thicker (2)", [&] {
     std::vector<RgbImage> pictures;

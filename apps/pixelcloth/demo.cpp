@@ -66,11 +66,6 @@ Pose showPose() {
   return Pose::fromEulerDegrees(e);
 }
 
-/// Every pose drawn at the same scale: the reach of the arms around the mannequin.
-Eigen::AlignedBox3d poseViewBounds() {
-  return Eigen::AlignedBox3d(Eigen::Vector3d(-0.9, 0.7, -0.6), Eigen::Vector3d(0.9, 2.0, 0.6));
-}
-
 void writeIndex(const fs::path& out, const nlohmann::json& report) {
   std::ostringstream html;
   html << "<!doctype html><html><head><meta charset='utf-8'><title>pixelcloth demo</title>"
@@ -126,9 +121,10 @@ void runDemo(const DemoArgs& args) {
     writePng(out / "body" / "cage.png", cage::renderCageOnMesh(body.mesh, bodyCage));
     report["body_cage"] = {{"curves", bodyCage.curves.size()}, {"nodes", bodyCage.nodes.size()}};
   });
-  section("Body cage", "The cage on the mannequin, where the T-shirt's seams and loops will sit: chest, waist, hem, "
-                       "bicep and sleeve-hem loops (red / black), centre lines (blue), side, shoulder and armhole "
-                       "lines (green); yellow dots are junctions, named like the shirt's.",
+  section("Body cage",
+          "The cage on the mannequin, where the T-shirt's seams and loops will sit: chest, waist, hem, "
+          "bicep and sleeve-hem loops (red / black), centre lines (blue), side, shoulder and armhole "
+          "lines (green); yellow dots are junctions, named like the shirt's.",
           {"body/cage.png"});
 
   steps.run("body shapes: thinner (-1), default (0), thicker (2)", [&] {
@@ -170,35 +166,9 @@ void runDemo(const DemoArgs& args) {
           {"skinning_artifacts.png"});
 
   steps.run("poses: random poses within the joint limits", [&] {
-    fs::path folder = out / "poses";
-    ensureOutputFolder(folder);
-    std::vector<RgbImage> pictures;
-    std::vector<float> vectors;
-    nlohmann::json list = nlohmann::json::array();
-    View view;
-    view.width = view.height = 300;
-    view.azimuthDegrees = 20;
-    view.elevationDegrees = 10;
-    view.bounds = poseViewBounds();
-    Progress progress("demo poses", args.poses);
-    for (int i = 0; i < args.poses; ++i) {
-      Pose pose = randomPose(args.seed * 1000003ull + i, 0.6);
-      Mesh posed;
-      posed.V = body.posedVertices(pose);
-      posed.F = body.mesh.F;
-      char name[32];
-      std::snprintf(name, sizeof(name), "posed_%03d.obj", i);
-      writeMesh(folder / name, posed);
-      list.push_back(poseToJson(pose));
-      Eigen::VectorXf v = pose.toVector();
-      vectors.insert(vectors.end(), v.data(), v.data() + v.size());
-      pictures.push_back(renderPosedBody(body, pose, view));
-      progress.advance();
-    }
-    progress.finish();
-    writeNpy(folder / "poses.npy", vectors, {args.poses, kPoseSize});
-    writeJson(folder / "poses.json", {{"seed", args.seed}, {"poses", list}});
-    writePng(folder / "posed.png", contactSheet(pictures, 6));
+    std::vector<Pose> poses;
+    for (int i = 0; i < args.poses; ++i) poses.push_back(randomPose(args.seed * 1000003ull + i, 0.6));
+    writePosedBodies(out / "poses", body, poses, {{"seed", args.seed}, {"amount", 0.6}});
   });
   section("Posed bodies",
           "Random poses drawn uniformly within 60% of each joint's range of motion (AAOS limits), "

@@ -1,17 +1,10 @@
 // pixelcloth pose: skin a body folder into given or random poses.
-#include <cstdio>
 #include <memory>
 
-#include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/body.h"
 #include "pixelcloth/core/error.h"
-#include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
-#include "pixelcloth/core/mesh_io.h"
-#include "pixelcloth/core/npy.h"
 #include "pixelcloth/core/pose_io.h"
-#include "pixelcloth/core/previews.h"
-#include "pixelcloth/core/progress.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -39,39 +32,7 @@ void runPose(const PoseArgs& args) {
   } else {
     for (int i = 0; i < args.random; ++i) poses.push_back(randomPose(args.seed * 1000003ull + i, args.amount));
   }
-  ensureOutputFolder(args.out);
-  std::filesystem::path out(args.out);
-  nlohmann::json list = nlohmann::json::array();
-  std::vector<float> vectors;
-  std::vector<RgbImage> pictures;
-  View view;
-  view.width = view.height = 320;
-  view.azimuthDegrees = 20;
-  view.elevationDegrees = 10;
-  // The same scale for every pose: the reach of the arms around the body's rest bounding box.
-  for (int i = 0; i < body.mesh.numVertices(); ++i) view.bounds.extend(body.mesh.V.row(i).transpose().eval());
-  view.bounds.extend(Eigen::Vector3d(view.bounds.center().x(), view.bounds.max().y() + 0.3, 0.6));
-  view.bounds.extend(Eigen::Vector3d(view.bounds.center().x(), view.bounds.min().y(), -0.6));
-  Progress progress("pose", static_cast<std::int64_t>(poses.size()));
-  for (size_t i = 0; i < poses.size(); ++i) {
-    char name[32];
-    std::snprintf(name, sizeof(name), "posed_%03zu.obj", i);
-    Mesh posed;
-    posed.V = body.posedVertices(poses[i]);
-    posed.F = body.mesh.F;
-    writeMesh(out / name, posed);
-    nlohmann::json entry = poseToJson(poses[i]);
-    entry["mesh"] = name;
-    list.push_back(entry);
-    Eigen::VectorXf v = poses[i].toVector();
-    vectors.insert(vectors.end(), v.data(), v.data() + v.size());
-    if (pictures.size() < 24) pictures.push_back(renderPosedBody(body, poses[i], view));
-    progress.advance();
-  }
-  progress.finish();
-  writeNpy(out / "poses.npy", vectors, {static_cast<std::int64_t>(poses.size()), kPoseSize});
-  writeJson(out / "poses.json", {{"body", args.body}, {"seed", args.seed}, {"amount", args.amount}, {"poses", list}});
-  writePng(out / "posed.png", contactSheet(pictures, 6));
+  writePosedBodies(args.out, body, poses, {{"body", args.body}, {"seed", args.seed}, {"amount", args.amount}});
   PIXELCLOTH_INFO("pose: " << poses.size() << " posed meshes -> " << args.out
                            << "/{posed_NNN.obj, poses.json, poses.npy, posed.png}");
 }

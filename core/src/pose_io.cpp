@@ -1,9 +1,15 @@
 #include "pixelcloth/core/pose_io.h"
 
 #include <algorithm>
+#include <cstdio>
 
+#include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
+#include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/core/npy.h"
+#include "pixelcloth/core/previews.h"
+#include "pixelcloth/core/progress.h"
 
 namespace pixelcloth::core {
 
@@ -64,6 +70,44 @@ nlohmann::json poseToJson(const Pose& pose) {
   nlohmann::json euler = nlohmann::json::object();
   for (int k = 0; k < 10; ++k) euler[kPoseJoints[k]] = {degrees(k, 0), degrees(k, 1), degrees(k, 2)};
   return {{"pose", std::vector<float>(vector.data(), vector.data() + vector.size())}, {"euler_deg", euler}};
+}
+
+void writePosedBodies(const std::filesystem::path& folder, const Body& body, const std::vector<Pose>& poses,
+                      const nlohmann::json& info) {
+  ensureOutputFolder(folder);
+  View view;
+  view.width = view.height = 320;
+  view.azimuthDegrees = 20;
+  view.elevationDegrees = 10;
+  // One scale for every pose: the body's rest box widened by the reach of raised and swung arms.
+  for (int i = 0; i < body.mesh.numVertices(); ++i) view.bounds.extend(body.mesh.V.row(i).transpose().eval());
+  view.bounds.extend(Eigen::Vector3d(view.bounds.center().x(), view.bounds.max().y() + 0.3, 0.6));
+  view.bounds.extend(Eigen::Vector3d(view.bounds.center().x(), view.bounds.min().y(), -0.6));
+  nlohmann::json list = nlohmann::json::array();
+  std::vector<float> vectors;
+  std::vector<RgbImage> pictures;
+  Progress progress("pose", static_cast<std::int64_t>(poses.size()));
+  for (size_t i = 0; i < poses.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "posed_%03zu.obj", i);
+    Mesh posed;
+    posed.V = body.posedVertices(poses[i]);
+    posed.F = body.mesh.F;
+    writeMesh(folder / name, posed);
+    nlohmann::json entry = poseToJson(poses[i]);
+    entry["mesh"] = name;
+    list.push_back(entry);
+    Eigen::VectorXf v = poses[i].toVector();
+    vectors.insert(vectors.end(), v.data(), v.data() + v.size());
+    if (pictures.size() < 24) pictures.push_back(renderPosedBody(body, poses[i], view));
+    progress.advance();
+  }
+  progress.finish();
+  writeNpy(folder / "poses.npy", vectors, {static_cast<std::int64_t>(poses.size()), kPoseSize});
+  nlohmann::json json = info;
+  json["poses"] = list;
+  writeJson(folder / "poses.json", json);
+  writePng(folder / "posed.png", contactSheet(pictures, 6));
 }
 
 }  // namespace pixelcloth::core

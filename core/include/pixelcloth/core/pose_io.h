@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "pixelcloth/core/body.h"
 #include "pixelcloth/core/skeleton.h"
 
 namespace pixelcloth::core {
@@ -20,5 +21,11 @@ Pose poseFromJson(const nlohmann::json& json, const std::string& context);
 
 /// {"pose": [90], "euler_deg": {"l_arm": [x, y, z], ...}}: readable by readPose and by people.
 nlohmann::json poseToJson(const Pose& pose);
+
+/// Writes a folder of posed bodies: posed_NNN.obj per pose, poses.npy (N x 90 float32), poses.json (each pose
+/// as poseToJson plus its mesh name, and `info` at the top level) and posed.png (up to 24 poses at one scale,
+/// skeletons drawn). Shows progress on stderr.
+void writePosedBodies(const std::filesystem::path& folder, const Body& body, const std::vector<Pose>& poses,
+                      const nlohmann::json& info = nlohmann::json::object());
 
 }  // namespace pixelcloth::core

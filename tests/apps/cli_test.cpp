@@ -284,6 +284,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
       {"pose", {"--body", "--pose", "--random", "--seed", "--amount", "--out"}},
       {"demo", {"--out", "--poses", "--seed"}},
       {"bench", {"--repeats"}},
+      {"bases", {"--figures", "--side", "--cells", "--amplitude", "--theta", "--ratio", "--size"}},
   };
   for (const auto& [verb, options] : verbs) {
     SCOPED_TRACE(verb);
@@ -620,6 +621,29 @@ TEST_F(CliTest, GarmentRefusesFileAsOutputFolder) {
   EXPECT_TRUE(refused(pixelcloth({"garment", "tshirt", "--out", file.string()}), {file.string(), "not a folder"}));
   EXPECT_EQ(readFile(file), "not a folder\n");
   EXPECT_EQ(filesUnder(work), std::vector<std::string>{"F"});
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// bases
+
+TEST_F(CliTest, BasesWritesFiguresAndContactSheet) {
+  fs::path out = dir("out") / "bases";
+  CliRun run = pixelcloth({"bases", "--figures", out.string(), "--cells", "6", "--size", "48"});
+  ASSERT_EQ(run.status, 0) << run;
+  for (const std::string shape : {"one_bump", "two_bumps", "sine", "s_curve"})
+    for (const std::string kind : {"_iso", "_aniso"}) {
+      EXPECT_TRUE(isPng(out / (shape + kind + ".png"))) << shape + kind;
+      EXPECT_TRUE(isPng(out / (shape + kind + "_3d.png"))) << shape + kind;
+      EXPECT_EQ(core::readMesh(out / (shape + kind + ".obj")).numFaces(), 4 * 6 * 6) << shape + kind;
+    }
+  EXPECT_TRUE(isPng(out / "bases.png"));
+  EXPECT_TRUE(noTemporaries(out));
+}
+
+TEST_F(CliTest, BasesRefusesRatioOutsideUnitInterval) {
+  fs::path out = dir("out") / "bases";
+  EXPECT_TRUE(refused(pixelcloth({"bases", "--figures", out.string(), "--ratio", "0"}), {"ratio", "(0, 1]"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 
 // ---------------------------------------------------------------------------------------------------------------------

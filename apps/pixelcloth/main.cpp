@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerPose(app);
   pixelcloth::apps::registerDemo(app);
   pixelcloth::apps::registerBench(app);
+  pixelcloth::apps::registerImages(app);
+  pixelcloth::apps::registerEdit(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
 
   try {

@@ -11,5 +11,7 @@ void registerGarment(CLI::App& app);
 void registerPose(CLI::App& app);
 void registerDemo(CLI::App& app);
 void registerBench(CLI::App& app);
+void registerImages(CLI::App& app);
+void registerEdit(CLI::App& app);
 
 }  // namespace pixelcloth::apps

@@ -101,8 +101,10 @@ Eigen::MatrixXf readEditMask(const std::filesystem::path& path, const ClothImage
   const int W = image.width, L = static_cast<int>(image.layers.size());
   PIXELCLOTH_CHECK(png.height == image.height && (png.width == W || png.width == L * W),
                    path.string() << ": mask is " << png.width << " x " << png.height << ", expected " << W << " x "
-                                 << image.height << " (every layer) or " << L * W << " x " << image.height
-                                 << " (layers side by side)");
+                                 << image.height
+                                 << (L > 1 ? " (every layer) or " + std::to_string(L * W) + " x " +
+                                                 std::to_string(image.height) + " (layers side by side)"
+                                           : std::string()));
   Eigen::MatrixXf alpha(png.height, png.width);
   for (int y = 0; y < png.height; ++y)
     for (int x = 0; x < png.width; ++x) {

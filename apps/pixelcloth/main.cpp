@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerDemo(app);
   pixelcloth::apps::registerBench(app);
   pixelcloth::apps::registerBases(app);
+  pixelcloth::apps::registerImages(app);
+  pixelcloth::apps::registerEdit(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
 
   try {

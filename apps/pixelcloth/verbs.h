@@ -12,5 +12,7 @@ void registerPose(CLI::App& app);
 void registerDemo(CLI::App& app);
 void registerBench(CLI::App& app);
 void registerBases(CLI::App& app);
+void registerImages(CLI::App& app);
+void registerEdit(CLI::App& app);
 
 }  // namespace pixelcloth::apps

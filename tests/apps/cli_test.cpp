@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -18,6 +19,8 @@
 #include <vector>
 
 #include "../core/test_util.h"
+#include "pixelcloth/core/exr_io.h"
+#include "pixelcloth/core/garment.h"
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
@@ -285,6 +288,10 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
       {"demo", {"--out", "--poses", "--seed"}},
       {"bench", {"--repeats"}},
       {"bases", {"--figures", "--side", "--cells", "--amplitude", "--theta", "--ratio", "--size"}},
+      {"images", {"--garment", "--values", "--image", "--out", "--width", "--height", "--padding", "default"}},
+      {"edit",
+       {"--image", "--out", "--shift", "--inflate", "--inflate-add", "--brush", "--blend", "--mask", "--region",
+        "default"}},
   };
   for (const auto& [verb, options] : verbs) {
     SCOPED_TRACE(verb);
@@ -683,6 +690,80 @@ TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
   }
   EXPECT_GT(pictures, 0) << "index.html shows no pictures";
   EXPECT_TRUE(noTemporaries(out));
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// images and edit
+
+/// Smooth centimetre-sized offsets of the default T-shirt, #V x 3.
+Eigen::MatrixXf shirtOffsets() {
+  static const core::Garment shirt = core::makeTShirt();
+  Eigen::MatrixXf x(shirt.mesh.numVertices(), 3);
+  for (int v = 0; v < x.rows(); ++v) {
+    Eigen::Vector3d p = shirt.mesh.V.row(v);
+    x.row(v) << 0.02 * std::sin(6 * p.x()), 0.01 * std::cos(5 * p.y()), 0.015 * std::sin(4 * p.x() + 3 * p.y());
+  }
+  return x;
+}
+
+TEST_F(CliTest, ImagesRoundTripThroughExr) {
+  fs::path work = dir("work");
+  Eigen::MatrixXf x = shirtOffsets();
+  core::writeNpy(work / "values.npy", x);
+  CliRun run = pixelcloth(
+      {"images", "--garment", "tshirt", "--values", (work / "values.npy").string(), "--out", (work / "img").string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_TRUE(isPng(work / "img" / "cloth.png"));
+  core::ExrImage exr = core::readExr(work / "img" / "cloth.exr");
+  EXPECT_EQ(exr.width, 256);
+  EXPECT_TRUE(exr.hasChannel("front.du") && exr.hasChannel("back.mask"));
+  run = pixelcloth({"images", "--garment", "tshirt", "--image", (work / "img" / "cloth.exr").string(), "--out",
+                    (work / "back.npy").string()});
+  ASSERT_EQ(run.status, 0) << run;
+  Eigen::MatrixXf back = core::readNpyMatrixF(work / "back.npy", x.rows(), 3);
+  EXPECT_LT((back - x).cwiseAbs().maxCoeff(), 2e-4);
+  EXPECT_TRUE(noTemporaries(work));
+}
+
+TEST_F(CliTest, ImagesRefusesWrongVertexCountAndCorruptedExr) {
+  fs::path work = dir("work");
+  core::writeNpy(work / "few.npy", Eigen::MatrixXf::Zero(10, 3).eval());
+  const std::string rows = std::to_string(shirtOffsets().rows());
+  EXPECT_TRUE(refused(pixelcloth({"images", "--garment", "tshirt", "--values", (work / "few.npy").string(), "--out",
+                                  (work / "img").string()}),
+                      {"few.npy", "(10, 3)", "(" + rows + ", 3)"}));
+  EXPECT_TRUE(filesUnder(work / "img").empty());
+  writeFile(work / "bad.exr", "v/1 this is not an EXR file");
+  EXPECT_TRUE(refused(pixelcloth({"images", "--garment", "tshirt", "--image", (work / "bad.exr").string(), "--out",
+                                  (work / "v.npy").string()}),
+                      {"bad.exr"}));
+  EXPECT_FALSE(fs::exists(work / "v.npy"));
+}
+
+TEST_F(CliTest, EditShiftWritesExrAndPreview) {
+  fs::path work = dir("work");
+  core::writeNpy(work / "values.npy", shirtOffsets());
+  ASSERT_EQ(
+      pixelcloth({"images", "--garment", "tshirt", "--values", (work / "values.npy").string(), "--out", work.string()})
+          .status,
+      0);
+  CliRun run = pixelcloth({"edit", "--image", (work / "cloth.exr").string(), "--out", (work / "shifted.exr").string(),
+                           "--shift", "0.01", "0"});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_TRUE(isPng(work / "shifted.png"));
+  core::ExrImage before = core::readExr(work / "cloth.exr"), after = core::readExr(work / "shifted.exr");
+  Eigen::MatrixXf inside = (before.channel("front.mask").array() > 0).cast<float>();
+  EXPECT_NEAR((after.channel("front.du") - before.channel("front.du")).maxCoeff(), 0.01, 1e-6);
+  EXPECT_NEAR(
+      ((after.channel("front.du") - before.channel("front.du")).array() * (1 - inside.array())).abs().maxCoeff(), 0,
+      1e-9);
+  EXPECT_EQ(after.channel("front.dn"), before.channel("front.dn"));
+  EXPECT_TRUE(refused(pixelcloth({"edit", "--image", (work / "cloth.exr").string(), "--out", (work / "x.exr").string(),
+                                  "--shift", "0.01", "0", "--inflate", "2"}),
+                      {"exactly one"}));
+  EXPECT_TRUE(refused(pixelcloth({"edit", "--image", (work / "missing.exr").string(), "--out",
+                                  (work / "x.exr").string(), "--inflate", "2"}),
+                      {"missing.exr"}));
 }
 
 }  // namespace

@@ -11,5 +11,6 @@ void registerGarment(CLI::App& app);
 void registerPose(CLI::App& app);
 void registerDemo(CLI::App& app);
 void registerBench(CLI::App& app);
+void registerCage(CLI::App& app);
 
 }  // namespace pixelcloth::apps

@@ -14,5 +14,6 @@ void registerBench(CLI::App& app);
 void registerBases(CLI::App& app);
 void registerImages(CLI::App& app);
 void registerEdit(CLI::App& app);
+void registerCage(CLI::App& app);
 
 }  // namespace pixelcloth::apps

@@ -130,8 +130,10 @@ LayoutMesh meshLayout(const std::vector<pattern::Curve>& curves, const pattern::
         }
         current = next;
         chain.push_back(indexOf(current));
-        double fraction = current == to ? 1.0 : (toEigen(current->point()) - a).norm() / segmentLength;
-        params.push_back(samples[c][i] + (samples[c][i + 1] - samples[c][i]) * fraction);
+        // A sample keeps its fraction exactly (a joint must come back as the same point in the next round).
+        double fraction = (toEigen(current->point()) - a).norm() / segmentLength;
+        params.push_back(current == to ? samples[c][i + 1]
+                                       : samples[c][i] + (samples[c][i + 1] - samples[c][i]) * fraction);
       }
     }
   }
@@ -162,8 +164,17 @@ std::vector<LayoutMesh> meshStitched(const std::vector<pattern::Curve>& curves,
                                                         std::vector<std::vector<double>>(curves.size()));
   for (size_t l = 0; l < layouts.size(); ++l) {
     for (int c : layouts[l].curves) {
-      int n = std::max(1, static_cast<int>(std::ceil(curves[c].length() / spacing - 1e-9)));
-      for (int k = 0; k <= n; ++k) samples[l][c].push_back(k == n ? 1.0 : static_cast<double>(k) / n);
+      // Evenly spaced between consecutive joints, the joints' fractions themselves exactly.
+      std::vector<double> breaks = {0.0};
+      for (int j : curves[c].joints) breaks.push_back(curves[c].paramOf(j));
+      breaks.push_back(1.0);
+      std::sort(breaks.begin(), breaks.end());
+      samples[l][c].push_back(0.0);
+      for (size_t b = 0; b + 1 < breaks.size(); ++b) {
+        const double from = breaks[b], to = breaks[b + 1];
+        int n = std::max(1, static_cast<int>(std::ceil((to - from) * curves[c].length() / spacing - 1e-9)));
+        for (int k = 1; k <= n; ++k) samples[l][c].push_back(k == n ? to : from + (to - from) * k / n);
+      }
     }
   }
   for (rounds = 1; rounds <= kMaxStitchRounds; ++rounds) {
@@ -276,21 +287,37 @@ double Curve::length() const {
   return total;
 }
 
+double Curve::paramOf(int index) const {
+  double walked = 0;
+  for (int i = 0; i < index; ++i) walked += (points[i + 1] - points[i]).norm();
+  return index + 1 == static_cast<int>(points.size()) ? 1.0 : walked / length();
+}
+
 Eigen::Vector2d Curve::at(double t) const {
   if (t <= 0) return points.front();
   if (t >= 1) return points.back();
-  double target = t * length(), walked = 0;
+  // Fractions computed exactly as paramOf does, so that a joint's fraction gives back the joint bit for bit.
+  const double total = length();
+  double walked = 0;
   for (size_t i = 0; i + 1 < points.size(); ++i) {
-    double piece = (points[i + 1] - points[i]).norm();
-    if (walked + piece >= target && piece > 0)
-      return points[i] + (target - walked) / piece * (points[i + 1] - points[i]);
-    walked += piece;
+    const double f0 = walked / total;
+    walked += (points[i + 1] - points[i]).norm();
+    const double f1 = i + 2 == points.size() ? 1.0 : walked / total;
+    if (t == f0) return points[i];
+    if (t == f1) return points[i + 1];
+    if (t < f1 && f1 > f0) return points[i] + (t - f0) / (f1 - f0) * (points[i + 1] - points[i]);
   }
   return points.back();
 }
 
 Curve straightCurve(const std::string& name, const Eigen::Vector2d& a, const Eigen::Vector2d& b, bool stitched) {
   return Curve{name, {a, b}, stitched};
+}
+
+Curve polylineCurve(const std::string& name, const std::vector<Eigen::Vector2d>& points, bool stitched) {
+  Curve curve{name, points, stitched};
+  for (int i = 1; i + 1 < static_cast<int>(points.size()); ++i) curve.joints.push_back(i);
+  return curve;
 }
 
 MergedPattern meshPattern(const std::vector<Curve>& curves, const std::vector<Layout>& layouts, int targetVertices,
@@ -401,11 +428,18 @@ const Seam* Garment::findSeam(const std::string& seamName) const {
   return nullptr;
 }
 
+const CageLine* Garment::findLine(const std::string& lineName) const {
+  for (const auto& line : lines)
+    if (line.name == lineName) return &line;
+  return nullptr;
+}
+
 std::string Garment::summary() const {
   std::ostringstream out;
   out << name << ": " << mesh.numVertices() << " vertices, " << mesh.numFaces() << " faces, layouts ";
   for (size_t l = 0; l < layouts.size(); ++l) out << (l ? "+" : "") << layouts[l];
-  out << ", " << panels.size() << " panels, " << seams.size() << " seams, " << openings.size() << " openings";
+  out << ", " << panels.size() << " panels, " << seams.size() << " seams, " << openings.size() << " openings, "
+      << lines.size() << " cage lines";
   return out.str();
 }
 
@@ -474,6 +508,7 @@ RgbImage renderPattern(const Garment& garment, int pixelsPerMetre) {
   };
   for (const auto& opening : garment.openings)
     drawChain(opening.vertices, true, {40, 40, 40}, std::max(2.0, ppm / 400));
+  for (const auto& line : garment.lines) drawChain(line.vertices, line.closed, {30, 30, 120}, std::max(2.0, ppm / 400));
   for (size_t s = 0; s < garment.seams.size(); ++s) {
     drawChain(garment.seams[s].vertices, false, seamColor(static_cast<int>(s)), std::max(3.0, ppm / 250));
   }

@@ -13,6 +13,9 @@ void saveGarment(const std::filesystem::path& folder, const Garment& garment) {
   nlohmann::json openings = nlohmann::json::array();
   for (const Opening& opening : garment.openings)
     openings.push_back({{"name", opening.name}, {"vertices", opening.vertices}});
+  nlohmann::json lines = nlohmann::json::array();
+  for (const CageLine& line : garment.lines)
+    lines.push_back({{"name", line.name}, {"kind", line.kind}, {"closed", line.closed}, {"vertices", line.vertices}});
   nlohmann::json layouts = nlohmann::json::array();
   for (int l = 0; l < garment.numLayouts(); ++l) {
     Eigen::AlignedBox2d box = garment.layoutBounds(l);
@@ -32,6 +35,7 @@ void saveGarment(const std::filesystem::path& folder, const Garment& garment) {
       {"face_panel", std::vector<int>(garment.facePanel.data(), garment.facePanel.data() + garment.facePanel.size())},
       {"seams", seams},
       {"openings", openings},
+      {"cage_lines", lines},
       {"meshing", garment.meshing.summary(garment.mesh.numVertices())}};
   writeMesh(folder / "garment.obj", garment.mesh);
   writeJson(folder / "garment.json", json);

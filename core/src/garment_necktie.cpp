@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "garment_pattern.h"
 #include "pixelcloth/core/error.h"
@@ -29,6 +30,10 @@ void NecktieOptions::validate() const {
   PIXELCLOTH_CHECK(tipHeight < 0.5 * length, "necktie options: tipHeight ("
                                                  << tipHeight << ") must be less than half the length (" << length
                                                  << ")");
+  PIXELCLOTH_CHECK(bands >= 1 && bands <= 20, "necktie options: bands must be in [1, 20], got " << bands);
+  PIXELCLOTH_CHECK(length / bands > tipHeight, "necktie options: the lowest band line (length / bands = "
+                                                   << length / bands << ") must lie above the tip (tipHeight "
+                                                   << tipHeight << ")");
   // The mesher keeps every angle >= 20.7 degrees only where the outline has no corner sharper than 60 degrees.
   PIXELCLOTH_CHECK(0.5 * bladeWidth >= tipHeight * std::tan(M_PI / 6),
                    "necktie options: the tip must not be sharper than 60 degrees: bladeWidth / 2 = "
@@ -44,12 +49,27 @@ Garment makeNecktie(const NecktieOptions& options) {
   const P tip(0, 0), wideL(0.5 * options.bladeWidth, options.tipHeight),
       wideR(-0.5 * options.bladeWidth, options.tipHeight), knotL(0.5 * options.knotWidth, options.length),
       knotR(-0.5 * options.knotWidth, options.length);
+  // Band lines at heights length * k / bands, from the right edge to the left edge; the edges carry their ends.
+  std::vector<P> edgeLeft = {wideL}, edgeRight = {knotR};
+  std::vector<pattern::Curve> bandLines;
+  for (int k = 1; k < options.bands; ++k) {
+    const double y = options.length * k / options.bands;
+    const double t = (y - options.tipHeight) / (options.length - options.tipHeight);
+    const P left(wideL.x() + t * (knotL.x() - wideL.x()), y), right(-left.x(), y);
+    edgeLeft.push_back(left);
+    edgeRight.insert(edgeRight.begin() + 1, right);
+    bandLines.push_back(pattern::straightCurve("tie_band_" + std::to_string(k), right, left, false));
+  }
+  edgeLeft.push_back(knotL);
+  edgeRight.push_back(wideR);
   std::vector<pattern::Curve> curves = {
-      pattern::straightCurve("tip_left", tip, wideL, false),  pattern::straightCurve("edge_left", wideL, knotL, false),
-      pattern::straightCurve("knot", knotL, knotR, false),    pattern::straightCurve("edge_right", knotR, wideR, false),
+      pattern::straightCurve("tip_left", tip, wideL, false),  pattern::polylineCurve("edge_left", edgeLeft, false),
+      pattern::straightCurve("knot", knotL, knotR, false),    pattern::polylineCurve("edge_right", edgeRight, false),
       pattern::straightCurve("tip_right", wideR, tip, false),
   };
-  std::vector<pattern::Layout> layouts = {{"tie", false, {0, 1, 2, 3, 4}}};
+  curves.insert(curves.end(), bandLines.begin(), bandLines.end());
+  std::vector<pattern::Layout> layouts = {{"tie", false, {}}};
+  for (size_t c = 0; c < curves.size(); ++c) layouts[0].curves.push_back(static_cast<int>(c));
   const double area = 0.5 * options.bladeWidth * options.tipHeight +
                       0.5 * (options.bladeWidth + options.knotWidth) * (options.length - options.tipHeight);
   pattern::MergedPattern merged =
@@ -75,6 +95,8 @@ Garment makeNecktie(const NecktieOptions& options) {
   if (loops.size() != 1)
     throw std::logic_error("makeNecktie: the tie has " + std::to_string(loops.size()) + " boundaries");
   garment.openings.push_back(Opening{"outline", loops[0]});
+  for (size_t b = 0; b < bandLines.size(); ++b)
+    garment.lines.push_back(CageLine{bandLines[b].name, "split", merged.chains[0][5 + b], false});
   garment.meshing = merged.stats;
   garment.meshing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return garment;

@@ -11,16 +11,25 @@
 namespace pixelcloth::core::pattern {
 
 /// A curve of a flat pattern: a polyline in garment coordinates (x to the wearer's left, y up), metres. Curves meet
-/// only at their end points, which must be bit-identical where they are shared.
+/// only at their end points and at their joints, which must be bit-identical where they are shared.
 struct Curve {
   std::string name;
   std::vector<Eigen::Vector2d> points;  ///< >= 2 points
   /// Carried by every layout and stitched: all layouts must end up with the same vertices along it.
   bool stitched = false;
+  /// Indices of interior points where other curves end or cross this one (cage lines meeting a seam, a hem or
+  /// another line). Each becomes a mesh vertex at exactly its coordinates; on a stitched curve, at the same
+  /// arc-length parameter in every layout.
+  std::vector<int> joints = {};
   double length() const;
-  /// Point at arc-length fraction t in [0, 1]; the end points are returned exactly.
+  /// Arc-length fraction of points[index]; `at` returns that point exactly for this fraction.
+  double paramOf(int index) const;
+  /// Point at arc-length fraction t in [0, 1]; the end points and every polyline point are returned exactly.
   Eigen::Vector2d at(double t) const;
 };
+
+/// A straight-piece polyline through `points` whose interior points are all joints.
+Curve polylineCurve(const std::string& name, const std::vector<Eigen::Vector2d>& points, bool stitched);
 
 /// A straight curve from a to b.
 Curve straightCurve(const std::string& name, const Eigen::Vector2d& a, const Eigen::Vector2d& b, bool stitched);

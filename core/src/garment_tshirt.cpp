@@ -32,9 +32,12 @@ struct TShirtShape {
   bool inSleeve(double x, double y) const { return y > Ya && std::abs(x) > armholeX(y); }
 };
 
-/// Quarter-ellipse neckline from the right neck-side point (-Xn, L) through the centre (0, L - depth) to (Xn, L).
-pattern::Curve neckline(const std::string& name, double Xn, double L, double depth) {
-  constexpr int kPoints = 256;
+constexpr int kNecklinePoints = 256;
+
+/// Half-ellipse neckline from the right neck-side point (-Xn, L) through the centre (0, L - depth) to (Xn, L); point
+/// kNecklinePoints / 2 is the centre exactly.
+pattern::Curve necklineCurve(const std::string& name, double Xn, double L, double depth) {
+  constexpr int kPoints = kNecklinePoints;
   pattern::Curve curve{name, {}, false};
   for (int i = 0; i <= kPoints; ++i) {
     double theta = -M_PI / 2 + M_PI * i / kPoints;
@@ -107,6 +110,20 @@ void TShirtOptions::validate() const {
   PIXELCLOTH_CHECK(sleeveHemHeight <= armholeHeight, "T-shirt options: sleeveHemHeight ("
                                                          << sleeveHemHeight << ") must not exceed the armhole height "
                                                          << armholeHeight << " (armpitDepth - shoulderDrop)");
+  const double armpitHeight = length - armpitDepth;
+  PIXELCLOTH_CHECK(std::isfinite(waistHeight) && std::isfinite(chestHeight) && 0.02 <= waistHeight &&
+                       waistHeight + 0.02 <= chestHeight && chestHeight + 0.01 <= armpitHeight,
+                   "T-shirt options: expected 0.02 <= waistHeight, waistHeight + 0.02 <= chestHeight and chestHeight "
+                   "+ 0.01 <= armpit height above the hem ("
+                       << armpitHeight << "), got waistHeight " << waistHeight << ", chestHeight " << chestHeight);
+  PIXELCLOTH_CHECK(
+      chestHeight + 0.02 <= length - std::max(frontNeckDepth, backNeckDepth),
+      "T-shirt options: chestHeight (" << chestHeight << ") must be at least 2 cm below the neckline's lowest point");
+  PIXELCLOTH_CHECK(std::isfinite(sidePanelX) && sidePanelX >= 0.02 && sidePanelX <= halfWidth - 0.02,
+                   "T-shirt options: sidePanelX must be in [0.02, halfWidth - 0.02] = [0.02, "
+                       << halfWidth - 0.02 << "], got " << sidePanelX);
+  PIXELCLOTH_CHECK(std::isfinite(bicepFraction) && bicepFraction >= 0.1 && bicepFraction <= 0.9,
+                   "T-shirt options: bicepFraction must be in [0.1, 0.9], got " << bicepFraction);
   PIXELCLOTH_CHECK(frontNeckDepth < armpitDepth && backNeckDepth < armpitDepth,
                    "T-shirt options: neckline depths (" << frontNeckDepth << ", " << backNeckDepth
                                                         << ") must be less than armpitDepth " << armpitDepth);
@@ -123,29 +140,62 @@ Garment makeTShirt(const TShirtOptions& options) {
       shoulderR(-s.Xs, s.Ys), neckL(s.Xn, s.L), neckR(-s.Xn, s.L), sleeveTopL(s.Xe, s.Ys), sleeveTopR(-s.Xe, s.Ys),
       sleeveBottomL(s.Xe, s.Yb), sleeveBottomR(-s.Xe, s.Yb);
 
+  // Cage-line crossings, built once so that every curve through a crossing carries the same point bit for bit. Chest
+  // and waist lines run across the torso from side seam to side seam; the side-panel splits run down from the chest
+  // line to the hem at x = +-sx; the bicep lines cross each sleeve at the same fraction of its top and underarm seams.
+  const double yc = options.chestHeight, yw = options.waistHeight, sx = options.sidePanelX, tb = options.bicepFraction;
+  const P chestL(s.W, yc), chestR(-s.W, yc), waistL(s.W, yw), waistR(-s.W, yw);
+  const P bicepTopL = shoulderL + tb * (sleeveTopL - shoulderL), bicepTopR(-bicepTopL.x(), bicepTopL.y()),
+          bicepLowL = armpitL + tb * (sleeveBottomL - armpitL), bicepLowR(-bicepLowL.x(), bicepLowL.y());
+  auto across = [&](const std::string& name, double y) {
+    return pattern::polylineCurve(name, {P(-s.W, y), P(-sx, y), P(0, y), P(sx, y), P(s.W, y)}, false);
+  };
+  auto sidePanel = [&](const std::string& name, double x) {
+    return pattern::polylineCurve(name, {P(x, yc), P(x, yw), P(x, 0)}, false);
+  };
+  auto neckline = [&](const std::string& name, double depth) {
+    pattern::Curve curve = necklineCurve(name, s.Xn, s.L, depth);
+    curve.joints = {kNecklinePoints / 2};  // the centre line's top, (0, L - depth) exactly
+    return curve;
+  };
+
   // Curves in garment coordinates. Stitched curves run the same way in both layouts: seams start at the armpit, the
   // neck-side point or the shoulder point; armholes run from the shoulder point to the armpit.
   std::vector<pattern::Curve> curves = {
-      pattern::straightCurve("side_left", armpitL, hemL, true),
-      pattern::straightCurve("side_right", armpitR, hemR, true),
-      pattern::straightCurve("underarm_left", armpitL, sleeveBottomL, true),
-      pattern::straightCurve("underarm_right", armpitR, sleeveBottomR, true),
+      pattern::polylineCurve("side_left", {armpitL, chestL, waistL, hemL}, true),
+      pattern::polylineCurve("side_right", {armpitR, chestR, waistR, hemR}, true),
+      pattern::polylineCurve("underarm_left", {armpitL, bicepLowL, sleeveBottomL}, true),
+      pattern::polylineCurve("underarm_right", {armpitR, bicepLowR, sleeveBottomR}, true),
       pattern::straightCurve("shoulder_left", neckL, shoulderL, true),
       pattern::straightCurve("shoulder_right", neckR, shoulderR, true),
-      pattern::straightCurve("sleeve_top_left", shoulderL, sleeveTopL, true),
-      pattern::straightCurve("sleeve_top_right", shoulderR, sleeveTopR, true),
+      pattern::polylineCurve("sleeve_top_left", {shoulderL, bicepTopL, sleeveTopL}, true),
+      pattern::polylineCurve("sleeve_top_right", {shoulderR, bicepTopR, sleeveTopR}, true),
       pattern::straightCurve("armhole_front_left", shoulderL, armpitL, false),
       pattern::straightCurve("armhole_front_right", shoulderR, armpitR, false),
       pattern::straightCurve("armhole_back_left", shoulderL, armpitL, false),
       pattern::straightCurve("armhole_back_right", shoulderR, armpitR, false),
-      pattern::straightCurve("hem_front", hemR, hemL, false),
-      pattern::straightCurve("hem_back", hemR, hemL, false),
-      neckline("neckline_front", s.Xn, s.L, options.frontNeckDepth),
-      neckline("neckline_back", s.Xn, s.L, options.backNeckDepth),
+      pattern::polylineCurve("hem_front", {hemR, P(-sx, 0), P(0, 0), P(sx, 0), hemL}, false),
+      pattern::polylineCurve("hem_back", {hemR, P(-sx, 0), P(0, 0), P(sx, 0), hemL}, false),
+      neckline("neckline_front", options.frontNeckDepth),
+      neckline("neckline_back", options.backNeckDepth),
       pattern::straightCurve("sleeve_hem_left_front", sleeveBottomL, sleeveTopL, false),
       pattern::straightCurve("sleeve_hem_right_front", sleeveBottomR, sleeveTopR, false),
       pattern::straightCurve("sleeve_hem_left_back", sleeveBottomL, sleeveTopL, false),
       pattern::straightCurve("sleeve_hem_right_back", sleeveBottomR, sleeveTopR, false),
+      across("chest_front", yc),
+      across("chest_back", yc),
+      across("waist_front", yw),
+      across("waist_back", yw),
+      pattern::polylineCurve("centre_front", {P(0, s.L - options.frontNeckDepth), P(0, yc), P(0, yw), P(0, 0)}, false),
+      pattern::polylineCurve("centre_back", {P(0, s.L - options.backNeckDepth), P(0, yc), P(0, yw), P(0, 0)}, false),
+      sidePanel("side_panel_front_left", sx),
+      sidePanel("side_panel_front_right", -sx),
+      sidePanel("side_panel_back_left", sx),
+      sidePanel("side_panel_back_right", -sx),
+      pattern::straightCurve("bicep_left_front", bicepLowL, bicepTopL, false),
+      pattern::straightCurve("bicep_right_front", bicepLowR, bicepTopR, false),
+      pattern::straightCurve("bicep_left_back", bicepLowL, bicepTopL, false),
+      pattern::straightCurve("bicep_right_back", bicepLowR, bicepTopR, false),
   };
   auto curveIndex = [&](const std::string& name) {
     for (size_t c = 0; c < curves.size(); ++c)
@@ -158,8 +208,9 @@ Garment makeTShirt(const TShirtOptions& options) {
   std::vector<pattern::Layout> layouts = {{"front", false, shared}, {"back", true, shared}};
   for (const char* side : {"front", "back"}) {
     auto& layout = layouts[std::string(side) == "front" ? 0 : 1];
-    for (const char* curve :
-         {"armhole_%_left", "armhole_%_right", "hem_%", "neckline_%", "sleeve_hem_left_%", "sleeve_hem_right_%"}) {
+    for (const char* curve : {"armhole_%_left", "armhole_%_right", "hem_%", "neckline_%", "sleeve_hem_left_%",
+                              "sleeve_hem_right_%", "chest_%", "waist_%", "centre_%", "side_panel_%_left",
+                              "side_panel_%_right", "bicep_left_%", "bicep_right_%"}) {
       std::string name(curve);
       name.replace(name.find('%'), 1, side);
       layout.curves.push_back(curveIndex(name));
@@ -247,6 +298,26 @@ Garment makeTShirt(const TShirtOptions& options) {
     });
     if (loop == loops.end()) throw std::logic_error("makeTShirt: no boundary loop for " + openingName);
     garment.openings.push_back(Opening{openingName, *loop});
+  }
+
+  // Cage lines: loops join the front chain (wearer's right to left, or underarm to sleeve top) with the back chain
+  // walked back; both chains end on the same stitched seam vertices, which the loop visits once.
+  auto chain = [&](const std::string& curveName, int layout) { return merged.chains[layout][curveIndex(curveName)]; };
+  auto loop = [&](const std::string& name) {
+    std::vector<int> front = chain(name + "_front", 0), back = chain(name + "_back", 1);
+    if (front.front() != back.front() || front.back() != back.back())
+      throw std::logic_error("makeTShirt: the " + name + " lines do not meet on the stitched seams");
+    front.insert(front.end(), back.rbegin() + 1, back.rend() - 1);
+    return CageLine{name, "loop", front, true};
+  };
+  for (const char* name : {"chest", "waist", "bicep_left", "bicep_right"}) garment.lines.push_back(loop(name));
+  garment.lines.push_back(CageLine{"centre_front", "centre_line", chain("centre_front", 0), false});
+  garment.lines.push_back(CageLine{"centre_back", "centre_line", chain("centre_back", 1), false});
+  for (const char* side : {"front", "back"}) {
+    for (const char* hand : {"left", "right"}) {
+      const std::string name = std::string("side_panel_") + side + "_" + hand;
+      garment.lines.push_back(CageLine{name, "split", chain(name, side[0] == 'f' ? 0 : 1), false});
+    }
   }
 
   garment.meshing = merged.stats;

@@ -78,16 +78,15 @@ std::vector<Patch> segmentPatches(const core::Garment& garment, const std::vecto
       if (!boundarySet.count(u)) patch.interior.push_back(u);
     patches.push_back(std::move(patch));
   }
-  // Stable order: layout, then top to bottom (centroid v descending), then left to right.
-  auto centroid = [&](const Patch& p) {
-    Eigen::Vector2d c = Eigen::Vector2d::Zero();
-    for (int u : p.vertices) c += uvOf(garment, u, p.layout);
-    return Eigen::Vector2d(c / static_cast<double>(p.vertices.size()));
-  };
+  // Stable order: layout, then rows top to bottom, then left to right. A row is the top of the patch's UV box in
+  // steps of kRowStep: patches between the same two horizontal cage lines share their top exactly, and centroids
+  // (which differ with the triangulation) would split such a row.
+  constexpr double kRowStep = 0.05;
   std::vector<std::tuple<int, double, double, size_t>> order;
   for (size_t i = 0; i < patches.size(); ++i) {
-    Eigen::Vector2d c = centroid(patches[i]);
-    order.emplace_back(patches[i].layout, -std::round(c.y() * 100) / 100, c.x(), i);
+    Eigen::AlignedBox2d box;
+    for (int u : patches[i].vertices) box.extend(uvOf(garment, u, patches[i].layout));
+    order.emplace_back(patches[i].layout, -std::round(box.max().y() / kRowStep), box.center().x(), i);
   }
   std::sort(order.begin(), order.end());
   std::vector<Patch> sorted;

@@ -292,6 +292,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
       {"edit",
        {"--image", "--out", "--shift", "--inflate", "--inflate-add", "--brush", "--blend", "--mask", "--region",
         "default"}},
+      {"cage", {"--garment", "tshirt", "--out", "--size"}},
   };
   for (const auto& [verb, options] : verbs) {
     SCOPED_TRACE(verb);
@@ -650,6 +651,32 @@ TEST_F(CliTest, BasesWritesFiguresAndContactSheet) {
 TEST_F(CliTest, BasesRefusesRatioOutsideUnitInterval) {
   fs::path out = dir("out") / "bases";
   EXPECT_TRUE(refused(pixelcloth({"bases", "--figures", out.string(), "--ratio", "0"}), {"ratio", "(0, 1]"}));
+}
+
+// cage
+
+TEST_F(CliTest, CageWritesCurvesPatchesAndPicture) {
+  fs::path out = dir("out") / "cage";
+  CliRun run = pixelcloth({"cage", "--garment", "tshirt", "--out", out.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  const nlohmann::json cage = nlohmann::json::parse(readFile(out / "cage.json"));
+  EXPECT_EQ(cage.at("garment"), "tshirt");
+  EXPECT_GT(cage.at("curves").size(), 20u);
+  const nlohmann::json patches = nlohmann::json::parse(readFile(out / "patches.json")).at("patches");
+  ASSERT_EQ(patches.size(), 28u);
+  for (const auto& patch : patches) {
+    EXPECT_TRUE(patch.at("side") == "front" || patch.at("side") == "back");
+    EXPECT_GT(patch.at("boundary").size(), 3u);
+    EXPECT_GT(patch.at("vertices").size(), patch.at("boundary").size());
+    EXPECT_EQ(patch.at("bbox_px_512").size(), 2u);
+  }
+  EXPECT_TRUE(isPng(out / "cage.png"));
+  EXPECT_TRUE(noTemporaries(out));
+}
+
+TEST_F(CliTest, CageRefusesUnknownGarment) {
+  fs::path out = dir("out") / "skirt";
+  EXPECT_TRUE(refused(pixelcloth({"cage", "--garment", "skirt", "--out", out.string()}), {"skirt"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 

@@ -417,3 +417,60 @@ TEST(TShirt, SeamsSplitByTheMesherAreMatchedAcrossLayouts) {
     EXPECT_NEAR(uvLength(g, seam.vertices, 0), uvLength(g, seam.vertices, 1), 1e-9) << seam.name;
   }
 }
+
+TEST(TShirt, CageLinesRunAlongMeshEdgesWhereTheyBelong) {
+  const pc::Garment& g = shirt();
+  const pc::TShirtOptions o;
+  auto front = layoutEdges(g, 0), back = layoutEdges(g, 1);
+  ASSERT_EQ(g.lines.size(), 10u);
+  for (const auto& line : g.lines) {
+    const size_t n = line.vertices.size();
+    ASSERT_GE(n, 3u) << line.name;
+    EXPECT_EQ(line.closed, line.kind == "loop") << line.name;
+    std::set<int> seen(line.vertices.begin(), line.vertices.end());
+    EXPECT_EQ(seen.size(), n) << line.name << " repeats a vertex";
+    for (size_t i = 0; i + (line.closed ? 0 : 1) < n; ++i) {
+      auto e = edgeKey(line.vertices[i], line.vertices[(i + 1) % n]);
+      EXPECT_TRUE(front.count(e) || back.count(e)) << line.name << ": step " << i << " is no mesh edge";
+    }
+  }
+  // Pattern-space positions: garment x (UV u on the front, -u on the back) and y above the hem.
+  auto xy = [&](int v) {
+    const int l = g.vertexUV(v, 0) >= 0 ? 0 : 1;
+    Eigen::Vector2d uv = g.mesh.UV.row(g.vertexUV(v, l));
+    return Eigen::Vector2d(l == 0 ? uv.x() : -uv.x(), uv.y());
+  };
+  for (int v : g.findLine("chest")->vertices) EXPECT_NEAR(xy(v).y(), o.chestHeight, 1e-12);
+  for (int v : g.findLine("waist")->vertices) EXPECT_NEAR(xy(v).y(), o.waistHeight, 1e-12);
+  for (const char* name : {"centre_front", "centre_back"}) {
+    const auto& chain = g.findLine(name)->vertices;
+    for (int v : chain) EXPECT_NEAR(xy(v).x(), 0.0, 1e-12) << name;
+    EXPECT_NEAR(xy(chain.back()).y(), 0.0, 1e-12) << name;
+  }
+  for (int v : g.findLine("side_panel_back_left")->vertices) EXPECT_NEAR(xy(v).x(), o.sidePanelX, 1e-12);
+  for (int v : g.findLine("side_panel_front_right")->vertices) EXPECT_NEAR(xy(v).x(), -o.sidePanelX, 1e-12);
+  // The chest loop meets each side seam once, at the same vertex on both layouts, at the same height.
+  for (const char* side : {"side_left", "side_right"}) {
+    const auto& seam = g.findSeam(side)->vertices;
+    int met = 0;
+    for (int v : g.findLine("chest")->vertices) {
+      if (std::find(seam.begin(), seam.end(), v) == seam.end()) continue;
+      ++met;
+      EXPECT_NEAR(g.mesh.UV(g.vertexUV(v, 0), 1), o.chestHeight, 1e-12);
+      EXPECT_NEAR(g.mesh.UV(g.vertexUV(v, 1), 1), o.chestHeight, 1e-12);
+    }
+    EXPECT_EQ(met, 1) << side;
+  }
+}
+
+TEST(Necktie, BandLinesCrossTheBlade) {
+  const pc::Garment g = pc::makeNecktie();
+  ASSERT_EQ(g.lines.size(), 4u);
+  for (size_t b = 0; b < g.lines.size(); ++b) {
+    EXPECT_EQ(g.lines[b].name, "tie_band_" + std::to_string(b + 1));
+    for (int v : g.lines[b].vertices) EXPECT_NEAR(g.mesh.UV(g.vertexUV(v, 0), 1), 0.44 * (b + 1) / 5, 1e-12);
+  }
+  pc::NecktieOptions tooMany;
+  tooMany.bands = 10;  // lowest line at 0.044, below the tip's 0.06
+  EXPECT_THROW(tooMany.validate(), pc::InputError);
+}

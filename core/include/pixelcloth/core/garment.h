@@ -28,6 +28,25 @@ struct Opening {
   std::vector<int> vertices;
 };
 
+/// A cage line that is neither a seam nor an opening (DESIGN.md, "Cage"): a body loop around the torso or a sleeve,
+/// a centre line, or a line that only splits a region too large for one patch. The pattern mesher inserts it as a
+/// constraint, so it runs along mesh edges: consecutive vertices (and last-first when closed) share a mesh edge.
+/// T-shirt lines:
+///  - "chest", "waist" (kind "loop", closed): horizontal lines across the front and the back torso, joined through the
+///    side seams into one loop; "bicep_left", "bicep_right" (loop, closed): across both sleeve halves at mid-sleeve,
+///    joined through the sleeve-top and underarm seams. Each loop runs from the wearer's right (or the underarm) along
+///    the front, then back along the back layout.
+///  - "centre_front", "centre_back" (kind "centre_line", open): neckline to hem.
+///  - "side_panel_front_left", "side_panel_front_right", "side_panel_back_left", "side_panel_back_right" (kind
+///    "split", open): vertical lines from the chest line to the hem; left/right are the wearer's.
+/// Necktie lines: "tie_band_1" (lowest) ... (kind "split", open), across the blade from edge to edge.
+struct CageLine {
+  std::string name;
+  std::string kind;           ///< "loop" | "centre_line" | "split", as cage::curveKindName spells them
+  std::vector<int> vertices;  ///< ordered chain of mesh vertex indices
+  bool closed = false;        ///< continues from the last vertex back to the first
+};
+
 /// How the flat pattern was meshed: what the seam matching and the vertex-count search needed.
 struct PatternMeshingStats {
   int stitchRounds = 0;        ///< mesh-and-compare rounds until the stitched seams agreed, for the kept mesh
@@ -55,6 +74,7 @@ struct Garment {
   Eigen::MatrixXi vertexUV;
   std::vector<Seam> seams;
   std::vector<Opening> openings;
+  std::vector<CageLine> lines;  ///< cage lines other than seams and openings (see CageLine)
   PatternMeshingStats meshing;
 
   int numLayouts() const { return static_cast<int>(layouts.size()); }
@@ -67,7 +87,9 @@ struct Garment {
   double length() const;
   /// Seam by name, or nullptr.
   const Seam* findSeam(const std::string& seamName) const;
-  /// One line: "tshirt: 3012 vertices, 5790 faces, layouts front+back, 6 panels, 12 seams, 4 openings".
+  /// Cage line by name, or nullptr.
+  const CageLine* findLine(const std::string& lineName) const;
+  /// One line: "tshirt: 3012 vertices, 5790 faces, layouts front+back, 6 panels, 12 seams, 4 openings, 10 cage lines".
   std::string summary() const;
 };
 
@@ -87,7 +109,14 @@ struct TShirtOptions {
   double backNeckDepth = 0.02;      ///< back neckline depth below the neck-side point
   double neckSideHeight = 1.48;     ///< height of the neck-side point in the rest placement
   double torsoDepth = 0.12;         ///< distance of the front (back) torso from the side seams' plane z = 0
-  double sleeveDepth = 0.06;        ///< same for the sleeves
+  /// Height above the hem of the chest loop (below the armpit). With the waist height it sets the three bands of the
+  /// torso; 0.43 / 0.215 keep the two lower bands within 128 px of the 512 px cloth image (patches/frame.h).
+  double chestHeight = 0.43;
+  double waistHeight = 0.215;  ///< height above the hem of the waist loop
+  double sidePanelX = 0.15;    ///< distance of the side-panel split lines (chest line to hem) from the centre line
+  double bicepFraction =
+      0.5;                    ///< where the bicep loops cross the sleeve-top and underarm seams, fraction from the body
+  double sleeveDepth = 0.06;  ///< same for the sleeves
   /// Spacing of the first samples along the pattern's outline and seams, relative to the mesher's edge-length bound.
   /// About 0.7 matches the interior edge length; larger values let the mesher split boundary edges where it needs
   /// to, and the seams are then matched across the layouts in more rounds. In [0.3, 3].
@@ -99,7 +128,8 @@ struct TShirtOptions {
 /// Builds the T-shirt template: front and back layouts (each the body piece with the two sleeve halves, joined along
 /// the armholes), triangulated in pattern space by CGAL's constrained Delaunay mesher (min angle >= 20.7 degrees),
 /// stitched along the side, underarm, shoulder and sleeve-top seams. Openings: hem, neckline, sleeve_hem_left,
-/// sleeve_hem_right. Deterministic.
+/// sleeve_hem_right. Cage lines (see CageLine) inserted as mesher constraints split each layout into 14 patches.
+/// Deterministic.
 Garment makeTShirt(const TShirtOptions& options = {});
 
 /// A necktie blade: one narrow layout, pointed tip at the bottom, hanging flat in front of the chest.
@@ -112,16 +142,20 @@ struct NecktieOptions {
   double topHeight = 1.45;       ///< height of the knot end in the rest placement
   double frontOffset = 0.13;     ///< z of the hanging tie in the rest placement
   double boundarySpacing = 0.7;  ///< first sample spacing along the outline relative to the edge-length bound, [0.3, 3]
+  /// Number of patches along the blade, [1, 20]: bands - 1 evenly spaced cage lines "tie_band_1", ... across it (the
+  /// lowest must clear the tip: length / bands > tipHeight).
+  int bands = 5;
   /// Throws `InputError` naming the field when an option is out of range.
   void validate() const;
 };
 
-/// Builds the necktie template: one layout "tie", one panel, no seams, one opening "outline". Deterministic.
+/// Builds the necktie template: one layout "tie", one panel, no seams, one opening "outline", bands - 1 cage lines.
+/// Deterministic.
 Garment makeNecktie(const NecktieOptions& options = {});
 
 /// Picture of the flat pattern for people: the layouts side by side (in `layouts` order) with a gap, panels tinted by
 /// panel, triangle edges thin grey, seams thick, each seam in its own colour (the same on both layouts), openings
-/// dark. `pixelsPerMetre` of pattern space (10 to 10000).
+/// dark, cage lines dark blue. `pixelsPerMetre` of pattern space (10 to 10000).
 RgbImage renderPattern(const Garment& garment, int pixelsPerMetre = 1000);
 
 /// Writes a garment folder: garment.obj (positions, per-corner UVs as `vt`) and garment.json (layouts,

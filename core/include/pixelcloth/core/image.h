@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace pixelcloth::core {
@@ -45,6 +46,14 @@ void drawDisc(RgbImage& image, const Eigen::Vector2d& center, double radius, Col
 
 /// Pastes `source` into `target` with its top-left corner at (x, y).
 void paste(RgbImage& target, const RgbImage& source, int x, int y);
+
+/// Writes `text` in a 5x7 pixel bitmap font, each font pixel a `scale` x `scale` block, the top-left corner of the
+/// first character at `position` (pixels, x right, y down); characters advance by 6 * scale. Knows digits, letters
+/// (upper case drawn as lower case), '_', '-' and '.'; other characters leave a blank. Pixels outside are clipped.
+void drawText(RgbImage& image, const Eigen::Vector2i& position, const std::string& text, Color color, int scale = 1);
+
+/// Width and height in pixels of `text` as drawText writes it.
+Eigen::Vector2i textExtent(const std::string& text, int scale = 1);
 
 /// A color from a categorical palette of 12 well-separated colors (index taken modulo 12).
 Color paletteColor(int index);

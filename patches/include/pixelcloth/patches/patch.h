@@ -11,7 +11,9 @@ namespace pixelcloth::patches {
 
 /// One patch: a connected region of one layout of a garment, bounded by cage curves (paper section 3).
 struct Patch {
-  int id = 0;                 ///< 0-based, ordered by layout, then top to bottom, then left to right in pattern space
+  /// 0-based, ordered by layout, then rows top to bottom (the top of the patch's UV box in 5 cm steps), then left to
+  /// right (UV box centre).
+  int id = 0;
   int layout = 0;             ///< index into Garment::layouts
   std::vector<int> faces;     ///< garment faces
   std::vector<int> vertices;  ///< garment vertices used by the faces, sorted

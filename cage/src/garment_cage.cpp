@@ -1,0 +1,23 @@
+// The cage of a garment template: its seams, openings and cage lines as one curve network.
+#include "pixelcloth/cage/garment_cage.h"
+
+namespace pixelcloth::cage {
+
+Cage garmentCage(const core::Garment& garment) {
+  Cage cage;
+  for (const core::Seam& seam : garment.seams)
+    cage.curves.push_back({seam.name, CurveKind::Seam, false, seam.vertices});
+  for (const core::Opening& opening : garment.openings)
+    cage.curves.push_back({opening.name, CurveKind::Opening, true, opening.vertices});
+  for (const core::CageLine& line : garment.lines) {
+    const std::string where = garment.name + ": cage line '" + line.name + "'";
+    cage.curves.push_back({line.name, curveKindFromName(line.kind, where), line.closed, line.vertices});
+  }
+  cage.nodes = junctions(cage.curves);
+  cage.validate(garment.mesh.F, garment.mesh.numVertices(), garment.name + " cage");
+  return cage;
+}
+
+std::vector<std::pair<int, int>> cutEdges(const Cage& cage) { return cage.edges(); }
+
+}  // namespace pixelcloth::cage

@@ -1,0 +1,130 @@
+// The templates' patches: the cage lines split the T-shirt into 14 patches per side and the necktie into bands, each
+// small enough for a 160 px crop of the 512 px cloth image.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "pixelcloth/core/garment.h"
+#include "pixelcloth/patches/frame.h"
+#include "pixelcloth/patches/patch.h"
+#include "pixelcloth/patches/patch_picture.h"
+
+namespace pp = pixelcloth::patches;
+namespace pc = pixelcloth::core;
+
+namespace {
+/// Every edge of the garment's seams and cage lines (openings are layout boundaries anyway). The same set the cage
+/// module's cutEdges gives; built here because patches/ comes before cage/ in the module order.
+std::vector<std::pair<int, int>> garmentCuts(const pc::Garment& g) {
+  std::vector<std::pair<int, int>> cuts;
+  auto add = [&](const std::vector<int>& chain, bool closed) {
+    for (size_t i = 0; i + (closed ? 0 : 1) < chain.size(); ++i)
+      cuts.emplace_back(chain[i], chain[(i + 1) % chain.size()]);
+  };
+  for (const auto& seam : g.seams) add(seam.vertices, false);
+  for (const auto& line : g.lines) add(line.vertices, line.closed);
+  return cuts;
+}
+
+const pc::Garment& shirt() {
+  static const pc::Garment garment = pc::makeTShirt();
+  return garment;
+}
+const std::vector<pp::Patch>& shirtPatches() {
+  static const std::vector<pp::Patch> patches = pp::segmentPatches(shirt(), garmentCuts(shirt()));
+  return patches;
+}
+
+/// Upper bound on a patch's box, px of the 512 image; see GarmentPatches.TShirtPatchesFitTheCrop.
+constexpr double kCropPixels = 160.0;
+}  // namespace
+
+TEST(GarmentPatches, TShirtHas14PatchesPerSide) {
+  std::vector<int> perLayout(2, 0);
+  for (const pp::Patch& p : shirtPatches()) ++perLayout[p.layout];
+  EXPECT_EQ(shirtPatches().size(), 28u);
+  EXPECT_EQ(perLayout[0], 14);
+  EXPECT_EQ(perLayout[1], 14);
+}
+
+TEST(GarmentPatches, PatchesCoverEveryFaceOnceAndHaveOneBoundaryLoop) {
+  std::vector<int> cover(shirt().mesh.numFaces(), 0);
+  for (const pp::Patch& p : shirtPatches()) {
+    for (int f : p.faces) ++cover[f];
+    // segmentPatches throws unless the boundary is one loop; check it is closed along mesh edges too.
+    const pp::PatchMesh mesh = pp::patchMesh(shirt(), p);
+    std::set<std::pair<int, int>> edges;
+    for (int f = 0; f < mesh.F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) edges.insert(std::minmax(mesh.F(f, k), mesh.F(f, (k + 1) % 3)));
+    for (size_t i = 0; i < mesh.boundary.size(); ++i)
+      EXPECT_TRUE(edges.count(std::minmax(mesh.boundary[i], mesh.boundary[(i + 1) % mesh.boundary.size()])))
+          << "patch " << p.id;
+    EXPECT_EQ(p.boundary.size() + p.interior.size(), p.vertices.size());
+    EXPECT_GT(p.interior.size(), 10u) << "patch " << p.id;
+  }
+  for (int f = 0; f < shirt().mesh.numFaces(); ++f) ASSERT_EQ(cover[f], 1) << "face " << f;
+}
+
+TEST(GarmentPatches, TShirtPatchesFitTheCrop) {
+  // DESIGN.md asks for 128 px (a 160 px crop with 16 px of context). With the template's proportions and the shared
+  // frame (0.0017 m/px) the four upper-torso patches cannot: each spans the torso half, 0.27 m = 158 px, at the
+  // armpit. All others fit 128 px; every patch fits the 160 px crop itself.
+  int over128 = 0;
+  double largest = 0;
+  for (const pp::Patch& p : shirtPatches()) {
+    const Eigen::Vector2d extent = pp::patchPixelExtent(shirt(), p, 512);
+    largest = std::max(largest, extent.maxCoeff());
+    EXPECT_LE(extent.maxCoeff(), kCropPixels) << "patch " << p.id;
+    over128 += extent.maxCoeff() > 128.0;
+  }
+  std::cout << "[ patches  ] largest T-shirt patch " << largest << " px of 512" << std::endl;
+  EXPECT_LE(over128, 4);
+}
+
+TEST(GarmentPatches, NecktieBands) {
+  const pc::Garment tie = pc::makeNecktie();
+  const std::vector<pp::Patch> patches = pp::segmentPatches(tie, garmentCuts(tie));
+  EXPECT_EQ(patches.size(), 5u);
+  for (const pp::Patch& p : patches) EXPECT_LE(pp::patchPixelExtent(tie, p, 512).maxCoeff(), 128.0) << p.id;
+}
+
+TEST(GarmentPatches, PictureShowsBothSides) {
+  std::vector<pp::PictureCurve> curves;
+  for (const auto& seam : shirt().seams) curves.push_back({seam.vertices, false, "seam"});
+  for (const auto& line : shirt().lines) curves.push_back({line.vertices, line.closed, line.kind});
+  const pc::RgbImage image = pp::renderPatches(shirt(), shirtPatches(), curves, 256);
+  EXPECT_GT(image.width, 2 * 256);
+  EXPECT_GT(image.height, 256);
+  // Patch tints are not white: most of the area inside each layout's frame centre is coloured.
+  const pc::Color white = {255, 255, 255};
+  int coloured = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) coloured += !std::equal(white.begin(), white.end(), image.at(x, y));
+  EXPECT_GT(coloured, image.width * image.height / 4);
+}
+
+TEST(GarmentPatches, IdsRunInRowsTopToBottomLeftToRight) {
+  // Per side: sleeves and upper torso (6), chest to waist (4), waist to hem (4).
+  const pc::TShirtOptions o;
+  const auto& patches = shirtPatches();
+  for (int layout = 0; layout < 2; ++layout) {
+    auto box = [&](int k) {
+      Eigen::AlignedBox2d b;
+      for (int v : patches[14 * layout + k].vertices)
+        b.extend(Eigen::Vector2d(shirt().mesh.UV.row(shirt().vertexUV(v, layout))));
+      return b;
+    };
+    for (int k = 0; k < 14; ++k) {
+      EXPECT_EQ(patches[14 * layout + k].layout, layout);
+      const double top = box(k).max().y();
+      if (k < 6) {
+        EXPECT_GT(top, o.chestHeight + 0.1) << k;
+      } else {
+        EXPECT_NEAR(top, k < 10 ? o.chestHeight : o.waistHeight, 1e-12) << k;
+      }
+      if (k != 0 && k != 6 && k != 10) {
+        EXPECT_LT(box(k - 1).center().x(), box(k).center().x()) << k;
+      }
+    }
+  }
+}

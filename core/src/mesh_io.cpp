@@ -463,6 +463,15 @@ void writeMesh(const fs::path& path, const Mesh& mesh) {
     }
   }
 
+  if (withTexcoords) {
+    // OpenMesh's OBJ writer emits the texture coordinate of every halfedge, boundary ones (which belong to no face)
+    // included; give those the coordinate of the corner they leave from, never uninitialised memory.
+    for (auto h : om.halfedges()) {
+      if (!h.is_boundary()) continue;
+      om.set_texcoord2D(h, h.opp().is_boundary() ? OmMesh::TexCoord2D(0, 0) : om.texcoord2D(h.opp().prev()));
+    }
+  }
+
   OpenMesh::IO::Options options = OpenMesh::IO::Options::Default;
   if (withTexcoords) options += OpenMesh::IO::Options::FaceTexCoord;
   if (format == Format::Ply) {

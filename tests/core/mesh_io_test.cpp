@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
 
 #include "pixelcloth/core/atomic_file.h"
@@ -56,6 +58,16 @@ TEST(MeshIo, ObjRoundTripKeepsOrderAndPerCornerUVsAcrossSeams) {
   fs::path dir = pixelcloth::testing::freshDir("obj");
   pc::Mesh mesh = seamedGrid();
   pc::writeMesh(dir / "grid.obj", mesh);
+  // Every vt line is one of the mesh's texture coordinates: OpenMesh also writes those of boundary halfedges, which
+  // once came out as uninitialised memory (NaN, 1e34) on open meshes.
+  std::istringstream lines(pc::readTextFile(dir / "grid.obj"));
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("vt ", 0) != 0) continue;
+    std::istringstream values(line.substr(3));
+    double u = 0, v = 0;
+    values >> u >> v;
+    EXPECT_TRUE(std::isfinite(u) && std::isfinite(v) && u >= 0 && u <= 1 && v >= 0 && v <= 0.25) << line;
+  }
   pc::Mesh back = pc::readMesh(dir / "grid.obj");
   ASSERT_EQ(back.V.rows(), mesh.V.rows());
   EXPECT_LT((back.V - mesh.V).cwiseAbs().maxCoeff(), 1e-7);  // float precision, same vertex order

@@ -66,19 +66,15 @@ TEST(GarmentPatches, PatchesCoverEveryFaceOnceAndHaveOneBoundaryLoop) {
 }
 
 TEST(GarmentPatches, TShirtPatchesFitTheCrop) {
-  // DESIGN.md asks for 128 px (a 160 px crop with 16 px of context). With the template's proportions and the shared
-  // frame (0.0017 m/px) the four upper-torso patches cannot: each spans the torso half, 0.27 m = 158 px, at the
-  // armpit. All others fit 128 px; every patch fits the 160 px crop itself.
-  int over128 = 0;
+  // DESIGN.md: every patch's box at most 128 px in its side's 512 image, so a 160 px crop holds it with 16 px of
+  // context. Measured at the default frame margin: largest ~125 px (the upper-torso patches spanning a torso half).
   double largest = 0;
   for (const pp::Patch& p : shirtPatches()) {
     const Eigen::Vector2d extent = pp::patchPixelExtent(shirt(), p, 512);
     largest = std::max(largest, extent.maxCoeff());
-    EXPECT_LE(extent.maxCoeff(), kCropPixels) << "patch " << p.id;
-    over128 += extent.maxCoeff() > 128.0;
+    EXPECT_LE(extent.maxCoeff(), 128.0) << "patch " << p.id;
   }
-  std::cout << "[ patches  ] largest T-shirt patch " << largest << " px of 512" << std::endl;
-  EXPECT_LE(over128, 4);
+  RecordProperty("largest_patch_px", std::to_string(largest));
 }
 
 TEST(GarmentPatches, NecktieBands) {

@@ -64,14 +64,15 @@ core::RgbImage renderClothImage(const ClothImage& image, const PreviewOptions& o
 /// The frame of one layout in a width x height cloth image (non-square allowed, e.g. the necktie's 64 x 256): every
 /// layout of the garment at the same scale, the largest at which each layout's UV box fits inside (1 - 2 * margin) of
 /// both image dimensions, centred. For width == height this is `layoutFrame(garment, layout, size, margin)`.
-ImageFrame clothImageFrame(const core::Garment& garment, int layout, int width, int height, double margin = 0.03);
+ImageFrame clothImageFrame(const core::Garment& garment, int layout, int width, int height,
+                           double margin = kLayoutMargin);
 
 /// Options of whole-garment cloth images.
 struct ClothImageOptions {
-  int width = 0;         ///< pixels; 0: the garment's default (T-shirt 256, necktie 64)
-  int height = 0;        ///< pixels; 0: the garment's default (256 for both)
-  int padding = 16;      ///< pixels of padding around each layout
-  double margin = 0.03;  ///< fraction of the image left free around the layouts
+  int width = 0;                  ///< pixels; 0: the garment's default (T-shirt 256, necktie 64)
+  int height = 0;                 ///< pixels; 0: the garment's default (256 for both)
+  int padding = 16;               ///< pixels of padding around each layout
+  double margin = kLayoutMargin;  ///< fraction of the image left free around the layouts
   /// Throws `InputError` naming the field for out-of-range values.
   void validate() const;
 };

@@ -90,12 +90,13 @@ struct SampleOperator {
 /// The sample operator that inverts `raster`: each of its vertices is interpolated bilinearly between the 4 pixel
 /// centres around its UV in that layout, using only pixels that are not empty in `raster.mask` (weights renormalised).
 ///
-/// Round trip sample(raster(x)) on the default T-shirt (makeTShirt(), 2986 vertices), padding 16, both layouts, max
-/// |error| over the layout's vertices relative to the field's range there (tests/patches/raster_test.cpp, measured):
+/// Round trip sample(raster(x)) on the default T-shirt (makeTShirt(), 2989 vertices), padding 16, default frame margin,
+/// both layouts, max |error| over the layout's vertices relative to the field's range there
+/// (tests/patches/raster_test.cpp, measured):
 ///   field                      | 256 x 256: taps inside / all | 512 x 512: taps inside / all
-///   linear 0.3u - 0.2v         | 8.9e-8 / 9.0e-4              | 8.9e-8 / 4.9e-4
-///   quadratic 2u^2 + uv - v^2  | 8.5e-5 / 1.6e-3              | 4.5e-5 / 1.1e-3
-///   sin(10u) cos(10v)          | 1.4e-3 / 2.8e-3              | 6.7e-4 / 1.5e-3
+///   linear 0.3u - 0.2v         | 4.4e-8 / 1.3e-3              | 4.4e-8 / 7.3e-4
+///   quadratic 2u^2 + uv - v^2  | 1.1e-4 / 2.7e-3              | 5.7e-5 / 1.4e-3
+///   sin(10u) cos(10v)          | 1.7e-3 / 3.0e-3              | 8.4e-4 / 2.1e-3
 /// "taps inside": vertices whose 4 bilinear pixels are all inside (linear fields exact to float precision there);
 /// "all" adds boundary vertices, whose taps include padding pixels holding the closest boundary value rather than the
 /// field's extension (an error of up to ~0.5 px times the gradient).

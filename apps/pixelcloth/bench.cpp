@@ -9,12 +9,16 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/body.h"
 #include "pixelcloth/core/garment.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
+#include "pixelcloth/patches/frame.h"
+#include "pixelcloth/patches/garment_fill.h"
+#include "pixelcloth/patches/raster.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -49,6 +53,24 @@ void runBench(int repeats) {
   emit("body.skin_14k_vertices", 1e3 * medianSeconds(repeats * 10, [&] { body.posedVertices(pose); }), "ms", 2.0);
   emit("garment.tshirt_build", medianSeconds(repeats, [] { makeTShirt(); }), "s", 1.0);
   emit("garment.necktie_build", medianSeconds(repeats, [] { makeNecktie(); }), "s", 0.2);
+
+  // Cage and patches (issue goals): rasterising a 512 x 512 image from the ~3K-vertex T-shirt, building all 28
+  // patch bases, filling one patch (the slowest of the 28).
+  Garment shirt = makeTShirt();
+  patches::RasterOperator raster = patches::buildRaster(shirt, 0, patches::layoutFrame(shirt, 0, 512));
+  Eigen::MatrixXf offsets = Eigen::MatrixXf::Random(shirt.mesh.numVertices(), 3);
+  Eigen::MatrixXf pixels;
+  emit("patches.raster_512_from_3k_vertices",
+       1e3 * medianSeconds(repeats * 20, [&] { raster.applyTo(offsets, pixels); }), "ms", 0.5);
+  std::vector<patches::Patch> patchList = patches::segmentPatches(shirt, cage::cutEdges(cage::garmentCage(shirt)));
+  std::unique_ptr<patches::GarmentFill> fill;
+  emit("patches.bases_all_28_patches",
+       medianSeconds(repeats, [&] { fill = std::make_unique<patches::GarmentFill>(shirt, patchList); }), "s", 1.0);
+  Eigen::MatrixX3d values = Eigen::MatrixX3d::Random(shirt.mesh.numVertices(), 3), filled = values;
+  double slowest = 0;
+  for (int p = 0; p < static_cast<int>(patchList.size()); ++p)
+    slowest = std::max(slowest, medianSeconds(repeats * 20, [&] { fill->fillPatch(p, values, filled); }));
+  emit("patches.fill_one_patch_slowest", 1e6 * slowest, "us", 50.0);
 
   auto dir = std::filesystem::temp_directory_path() / ("pixelcloth-bench-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);

@@ -20,10 +20,12 @@ struct CageArgs {
 };
 
 void runCage(const CageArgs& args) {
-  using namespace pixelcloth;
-  const std::filesystem::path out(args.out);
-  core::checkOutputFolder(out);
-  const core::Garment garment = args.garment == "tshirt" ? core::makeTShirt() : core::makeNecktie();
+  core::checkOutputFolder(args.out);
+  writeCageFolder(args.garment == "tshirt" ? core::makeTShirt() : core::makeNecktie(), args.out, args.size);
+}
+}  // namespace
+
+void writeCageFolder(const core::Garment& garment, const std::filesystem::path& out, int size) {
   const cage::Cage cage = cage::garmentCage(garment);
   const std::vector<patches::Patch> patchList = patches::segmentPatches(garment, cage::cutEdges(cage));
 
@@ -34,25 +36,24 @@ void runCage(const CageArgs& args) {
   nlohmann::json list = nlohmann::json::array();
   double largest = 0;
   for (const patches::Patch& patch : patchList) {
-    const Eigen::Vector2d extent = patches::patchPixelExtent(garment, patch, args.size);
+    const Eigen::Vector2d extent = patches::patchPixelExtent(garment, patch, size);
     largest = std::max(largest, extent.maxCoeff());
     list.push_back({{"id", patch.id},
                     {"side", garment.layouts[patch.layout]},
                     {"vertices", patch.vertices},
                     {"boundary", patch.boundary},
-                    {"bbox_px_" + std::to_string(args.size), {extent.x(), extent.y()}}});
+                    {"bbox_px_" + std::to_string(size), {extent.x(), extent.y()}}});
   }
-  core::writeJson(out / "patches.json", {{"garment", garment.name}, {"image_size", args.size}, {"patches", list}});
+  core::writeJson(out / "patches.json", {{"garment", garment.name}, {"image_size", size}, {"patches", list}});
 
   std::vector<patches::PictureCurve> curves;
   for (const cage::CageCurve& curve : cage.curves)
     curves.push_back({curve.vertices, curve.closed, cage::curveKindName(curve.kind)});
-  core::writePng(out / "cage.png", patches::renderPatches(garment, patchList, curves, args.size));
+  core::writePng(out / "cage.png", patches::renderPatches(garment, patchList, curves, size));
   PIXELCLOTH_INFO("cage: " << garment.name << ": " << cage.curves.size() << " curves, " << cage.nodes.size()
                            << " nodes, " << patchList.size() << " patches, largest patch " << largest << " px of "
-                           << args.size << " -> " << args.out << "/{cage.json, patches.json, cage.png}");
+                           << size << " -> " << out.string() << "/{cage.json, patches.json, cage.png}");
 }
-}  // namespace
 
 void registerCage(CLI::App& app) {
   auto args = std::make_shared<CageArgs>();

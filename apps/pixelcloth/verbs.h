@@ -1,6 +1,9 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
+
+#include "pixelcloth/core/garment.h"
 
 namespace pixelcloth::apps {
 
@@ -15,5 +18,8 @@ void registerBases(CLI::App& app);
 void registerImages(CLI::App& app);
 void registerEdit(CLI::App& app);
 void registerCage(CLI::App& app);
+
+/// Writes cage.json, patches.json and cage.png of a garment into `out` (the `cage` verb's outputs; the demo's too).
+void writeCageFolder(const core::Garment& garment, const std::filesystem::path& out, int size = 512);
 
 }  // namespace pixelcloth::apps

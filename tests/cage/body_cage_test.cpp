@@ -90,3 +90,34 @@ TEST(BodyCage, JunctionsCarryTheNamesOfTheCurvesThatMeet) {
     }
   }
 }
+
+#include "pixelcloth/cage/garment_cage.h"
+#include "pixelcloth/core/garment.h"
+
+TEST(BodyCage, EveryBodyJunctionHasItsNamesakeOnTheShirt) {
+  pcg::Cage body = pcg::bodyCage(mannequin());
+  pcg::Cage shirt = pcg::garmentCage(pc::makeTShirt());
+  ASSERT_GE(body.nodes.size(), 20u);
+  for (const pcg::CageNode& node : body.nodes) EXPECT_GE(shirt.findNode(node.name), 0) << node.name;
+}
+
+TEST(BodyCage, WorksOnAnImportedBody) {
+  // The mannequin lowered into an A-pose, written as a mesh plus joints, imported back (arms rotated to the T-pose).
+  const pc::Body& original = mannequin();
+  Eigen::Matrix<double, 10, 3> degrees = Eigen::Matrix<double, 10, 3>::Zero();
+  degrees(5, 2) = -35;
+  degrees(8, 2) = 35;
+  pc::Pose pose = pc::Pose::fromEulerDegrees(degrees);
+  pc::Mesh mesh;
+  mesh.V = original.posedVertices(pose);
+  mesh.F = original.mesh.F;
+  pc::JointTransforms t = pc::forwardKinematics(original.skeleton, pose);
+  pc::JointPositions joints;
+  for (const auto& name : pc::kPoseJoints) joints[name] = t.positions.row(original.skeleton.index(name)).transpose();
+  pc::Body imported = pc::importBody(mesh, joints, "apose.obj");
+  pcg::Cage cage = pcg::bodyCage(imported);
+  EXPECT_NO_THROW(cage.validate(imported.mesh.F, imported.mesh.numVertices()));
+  EXPECT_EQ(cage.nodes.size(), pcg::bodyCage(original).nodes.size());
+  double chest = curveLength(imported.mesh, *cage.findCurve("chest"));
+  EXPECT_NEAR(chest, curveLength(original.mesh, *pcg::bodyCage(original).findCurve("chest")), 0.05);
+}

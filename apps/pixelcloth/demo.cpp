@@ -52,14 +52,6 @@ class Steps {
   nlohmann::json& report_;
 };
 
-/// An A-pose: arms lowered by `degrees` from the T-pose.
-Pose aPose(double degrees) {
-  Eigen::Matrix<double, 10, 3> e = Eigen::Matrix<double, 10, 3>::Zero();
-  e(5, 2) = -degrees;
-  e(8, 2) = degrees;
-  return Pose::fromEulerDegrees(e);
-}
-
 /// Arms raised and bent, torso twisted: a pose where weight errors show.
 Pose showPose() {
   Eigen::Matrix<double, 10, 3> e = Eigen::Matrix<double, 10, 3>::Zero();
@@ -183,17 +175,10 @@ void runDemo(const DemoArgs& args) {
   steps.run("import: an A-posed body brought back to the T-pose", [&] {
     fs::path folder = out / "import";
     ensureOutputFolder(folder);
-    Pose pose = aPose(40);
-    Mesh aPosed;
-    aPosed.V = body.posedVertices(pose);
-    aPosed.F = body.mesh.F;
-    writeMesh(folder / "apose.obj", aPosed);
-    JointTransforms joints = forwardKinematics(body.skeleton, pose);
+    Pose pose = armsLowered(40);
+    writeMesh(folder / "apose.obj", body.posedMesh(pose));
     nlohmann::json jointJson = nlohmann::json::object();
-    for (const auto& name : kPoseJoints) {
-      Eigen::Vector3d p = joints.positions.row(body.skeleton.index(name)).transpose();
-      jointJson[name] = {p.x(), p.y(), p.z()};
-    }
+    for (const auto& [name, p] : posedJoints(body, pose)) jointJson[name] = {p.x(), p.y(), p.z()};
     writeJson(folder / "joints.json", {{"joints", jointJson}});
     // The same path a user takes: files in, body out.
     Body imported = importBody(readMesh(folder / "apose.obj"), readJointPositions(folder / "joints.json"),

@@ -232,6 +232,13 @@ Eigen::MatrixX3d skin(const Skeleton& skeleton, const Eigen::MatrixX3d& restVert
   return posed;
 }
 
+Pose armsLowered(double degrees) {
+  Eigen::Matrix<double, 10, 3> e = Eigen::Matrix<double, 10, 3>::Zero();
+  e(5, 2) = -degrees;  // l_arm: -z lowers the left arm
+  e(8, 2) = degrees;   // r_arm mirrors it
+  return Pose::fromEulerDegrees(e);
+}
+
 Pose randomPose(std::uint64_t seed, double amount) {
   PIXELCLOTH_CHECK(amount >= 0 && amount <= 1, "random pose: amount must be in [0, 1], got " << amount);
   std::mt19937_64 rng(seed);

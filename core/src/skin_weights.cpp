@@ -206,6 +206,20 @@ std::vector<BodyPart> collisionParts(const Body& body, double overlap) {
 
 Eigen::MatrixX3d Body::posedVertices(const Pose& pose) const { return skin(skeleton, mesh.V, weights, pose); }
 
+Mesh Body::posedMesh(const Pose& pose) const {
+  Mesh posed;
+  posed.V = posedVertices(pose);
+  posed.F = mesh.F;
+  return posed;
+}
+
+JointPositions posedJoints(const Body& body, const Pose& pose) {
+  JointTransforms transforms = forwardKinematics(body.skeleton, pose);
+  JointPositions joints;
+  for (const auto& name : kPoseJoints) joints[name] = transforms.positions.row(body.skeleton.index(name)).transpose();
+  return joints;
+}
+
 void Body::validate(const std::string& context) const {
   mesh.validate(context);
   skeleton.validate(context);

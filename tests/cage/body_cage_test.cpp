@@ -104,16 +104,9 @@ TEST(BodyCage, EveryBodyJunctionHasItsNamesakeOnTheShirt) {
 TEST(BodyCage, WorksOnAnImportedBody) {
   // The mannequin lowered into an A-pose, written as a mesh plus joints, imported back (arms rotated to the T-pose).
   const pc::Body& original = mannequin();
-  Eigen::Matrix<double, 10, 3> degrees = Eigen::Matrix<double, 10, 3>::Zero();
-  degrees(5, 2) = -35;
-  degrees(8, 2) = 35;
-  pc::Pose pose = pc::Pose::fromEulerDegrees(degrees);
-  pc::Mesh mesh;
-  mesh.V = original.posedVertices(pose);
-  mesh.F = original.mesh.F;
-  pc::JointTransforms t = pc::forwardKinematics(original.skeleton, pose);
-  pc::JointPositions joints;
-  for (const auto& name : pc::kPoseJoints) joints[name] = t.positions.row(original.skeleton.index(name)).transpose();
+  pc::Pose pose = pc::armsLowered(35);
+  pc::Mesh mesh = original.posedMesh(pose);
+  pc::JointPositions joints = pc::posedJoints(original, pose);
   pc::Body imported = pc::importBody(mesh, joints, "apose.obj");
   pcg::Cage cage = pcg::bodyCage(imported);
   EXPECT_NO_THROW(cage.validate(imported.mesh.F, imported.mesh.numVertices()));

@@ -297,18 +297,8 @@ TEST(CollisionParts, ThreeOverlappingPartsCoverTheBody) {
 namespace {
 /// The mannequin with its arms lowered 40 degrees (an A-pose), and its joints there.
 std::pair<pc::Mesh, pc::JointPositions> aPosedMannequin() {
-  const pc::Body& body = mannequin();
-  Eigen::Matrix<double, 10, 3> degrees = Eigen::Matrix<double, 10, 3>::Zero();
-  degrees(5, 2) = -40;
-  degrees(8, 2) = 40;
-  pc::Pose pose = pc::Pose::fromEulerDegrees(degrees);
-  pc::Mesh mesh;
-  mesh.V = body.posedVertices(pose);
-  mesh.F = body.mesh.F;
-  pc::JointTransforms t = pc::forwardKinematics(body.skeleton, pose);
-  pc::JointPositions joints;
-  for (const auto& name : pc::kPoseJoints) joints[name] = t.positions.row(body.skeleton.index(name)).transpose();
-  return {mesh, joints};
+  pc::Pose pose = pc::armsLowered(40);
+  return {mannequin().posedMesh(pose), pc::posedJoints(mannequin(), pose)};
 }
 }  // namespace
 

@@ -28,6 +28,8 @@ struct Body {
 
   /// Posed vertex positions (#V x 3) by linear blend skinning.
   Eigen::MatrixX3d posedVertices(const Pose& pose) const;
+  /// The posed mesh: posed vertices, the same faces.
+  Mesh posedMesh(const Pose& pose) const;
   /// Throws InputError if sizes disagree, weights are negative / not normalised, or the mesh is not closed.
   void validate(const std::string& context = "body") const;
 };
@@ -80,6 +82,9 @@ std::vector<BodyPart> collisionParts(const Body& body, double overlap = 0.25);
 
 /// Joint positions given by a user for an imported body, by joint name (metres).
 using JointPositions = std::map<std::string, Eigen::Vector3d>;
+
+/// Where the 10 posable joints of `body` are in `pose`, by name: what importBody expects for a body standing so.
+JointPositions posedJoints(const Body& body, const Pose& pose);
 
 /// Reads joint positions from JSON: either {"joints": {"l_arm": [x, y, z], ...}} or the same object at
 /// the top level. Required: the 10 posable joints; optional: root, head, l_hand, r_hand (hand tips).

@@ -89,6 +89,9 @@ JointTransforms forwardKinematics(const Skeleton& skeleton, const Pose& pose);
 Eigen::MatrixX3d skin(const Skeleton& skeleton, const Eigen::MatrixX3d& restVertices, const Eigen::MatrixXd& weights,
                       const Pose& pose);
 
+/// The T-pose with both upper arms lowered by `degrees` towards the body (an A-pose when positive).
+Pose armsLowered(double degrees);
+
 /// A pose whose Euler angles are drawn uniformly in [amount * lower, amount * upper] of each joint's limits
 /// (every range contains 0, so amount = 0 is the rest pose and 1 the full range). Seeded, deterministic.
 /// The paper's pose sampler (half-normal mixtures, azimuth / altitude / twist, pruning) lives in sim/.

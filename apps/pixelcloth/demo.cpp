@@ -20,6 +20,7 @@
 #include "pixelcloth/patches/cloth_image.h"
 #include "pixelcloth/patches/edit.h"
 #include "pixelcloth/patches/garment_fill.h"
+#include "pixelcloth/sim/pose_sampler.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -163,13 +164,18 @@ void runDemo(const DemoArgs& args) {
           {"skinning_artifacts.png"});
 
   steps.run("poses: random poses within the joint limits", [&] {
-    std::vector<Pose> poses;
-    for (int i = 0; i < args.poses; ++i) poses.push_back(randomPose(args.seed * 1000003ull + i, 0.6));
-    writePosedBodies(out / "poses", body, poses, {{"seed", args.seed}, {"amount", 0.6}});
+    sim::PoseSamplerOptions options;
+    options.seed = args.seed;
+    sim::PoseSampler sampler(body, options);
+    std::vector<Pose> poses = sampler.sample(args.poses);
+    writePosedBodies(out / "poses", body, poses, {{"seed", args.seed}, {"sampler", "appendix"}});
+    report["poses"] = {{"kept", sampler.stats().accepted},
+                       {"rejected_arm_inside_torso", sampler.stats().rejectedArmInsideTorso}};
   });
   section("Posed bodies",
-          "Random poses drawn uniformly within 60% of each joint's range of motion (AAOS limits), "
-          "skinned by linear blend skinning; the skeleton is drawn over each.",
+          "Poses from the paper's sampler (half-normal mixtures on the centre line; uniform azimuth, "
+          "sine-altitude and twist for shoulders and arms, within the AAOS limits; poses with an arm inside the torso "
+          "rejected), skinned by linear blend skinning; the skeleton is drawn over each.",
           {"poses/posed.png"});
 
   steps.run("import: an A-posed body brought back to the T-pose", [&] {

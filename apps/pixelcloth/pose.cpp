@@ -5,6 +5,7 @@
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/pose_io.h"
+#include "pixelcloth/sim/pose_sampler.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -15,7 +16,6 @@ struct PoseArgs {
   std::string pose;
   int random = 0;
   std::uint64_t seed = 0;
-  double amount = 0.6;
   std::string out;
 };
 
@@ -30,9 +30,14 @@ void runPose(const PoseArgs& args) {
   if (!args.pose.empty()) {
     poses.push_back(readPose(args.pose));
   } else {
-    for (int i = 0; i < args.random; ++i) poses.push_back(randomPose(args.seed * 1000003ull + i, args.amount));
+    sim::PoseSamplerOptions options;
+    options.seed = args.seed;
+    sim::PoseSampler sampler(body, options);
+    poses = sampler.sample(args.random);
+    PIXELCLOTH_INFO("pose: " << sampler.stats().rejectedArmInsideTorso << " drawn poses rejected (an arm inside the "
+                             << "torso) for " << args.random << " kept");
   }
-  writePosedBodies(args.out, body, poses, {{"body", args.body}, {"seed", args.seed}, {"amount", args.amount}});
+  writePosedBodies(args.out, body, poses, {{"body", args.body}, {"seed", args.seed}, {"sampler", "appendix"}});
   PIXELCLOTH_INFO("pose: " << poses.size() << " posed meshes -> " << args.out
                            << "/{posed_NNN.obj, poses.json, poses.npy, posed.png}");
 }
@@ -44,11 +49,10 @@ void registerPose(CLI::App& app) {
   verb->add_option("--body", args->body, "Body folder written by 'pixelcloth body'")->required();
   verb->add_option("--pose", args->pose,
                    "Pose JSON: {\"pose\": [90 numbers]} or {\"joints\": {\"l_arm\": {\"euler_deg\": [x, y, z]}}}");
-  verb->add_option("--random", args->random, "Number of random poses (uniform within the joint limits)");
+  verb->add_option("--random", args->random,
+                   "Number of random poses from the paper's sampler (half-normal centre line; uniform azimuth, "
+                   "sine-altitude and twist for the arms; arms inside the torso rejected)");
   verb->add_option("--seed", args->seed, "Seed of the random poses")->capture_default_str();
-  verb->add_option("--amount", args->amount, "Fraction of each joint range the random poses use (0 = rest, 1 = full)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
   verb->add_option("--out", args->out, "Output folder (posed_NNN.obj, poses.json, poses.npy, posed.png)")->required();
   verb->callback([args] { runPose(*args); });
 }

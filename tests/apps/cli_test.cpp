@@ -284,7 +284,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> verbs = {
       {"body", {"--out", "--shape", "--corrupt-weights", "--corrupt-fraction", "--import", "--joints"}},
       {"garment", {"kind", "tshirt", "necktie", "--out", "--vertices"}},
-      {"pose", {"--body", "--pose", "--random", "--seed", "--amount", "--out"}},
+      {"pose", {"--body", "--pose", "--random", "--seed", "--out"}},
       {"demo", {"--out", "--poses", "--seed"}},
       {"bench", {"--repeats"}},
       {"bases", {"--figures", "--side", "--cells", "--amplitude", "--theta", "--ratio", "--size"}},

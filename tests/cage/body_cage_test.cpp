@@ -8,16 +8,15 @@
 #include <set>
 #include <sstream>
 
+#include "../core/fixtures.h"
 #include "pixelcloth/core/body.h"
 
 namespace pcg = pixelcloth::cage;
 namespace pc = pixelcloth::core;
 
+using pixelcloth::testing::mannequin;
+
 namespace {
-const pc::Body& mannequin() {
-  static const pc::Body body = pc::makeMannequin();
-  return body;
-}
 
 double curveLength(const pc::Mesh& mesh, const pcg::CageCurve& c) {
   double length = 0;

@@ -7,14 +7,13 @@
 #include <map>
 #include <set>
 
+#include "../core/fixtures.h"
+
 namespace pcg = pixelcloth::cage;
 namespace pc = pixelcloth::core;
 
 namespace {
-const pc::Garment& shirt() {
-  static const pc::Garment garment = pc::makeTShirt();
-  return garment;
-}
+const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
 const pcg::Cage& shirtCage() {
   static const pcg::Cage cage = pcg::garmentCage(shirt());
   return cage;

@@ -7,18 +7,15 @@
 #include <cmath>
 #include <fstream>
 
+#include "fixtures.h"
 #include "pixelcloth/core/error.h"
 #include "test_util.h"
 
 namespace pc = pixelcloth::core;
 
-namespace {
+using pixelcloth::testing::mannequin;
 
-/// The default mannequin is built once per test binary (it takes a few seconds).
-const pc::Body& mannequin() {
-  static const pc::Body body = pc::makeMannequin();
-  return body;
-}
+namespace {
 
 Eigen::Vector3d column(const pc::Body& body, int v) { return body.mesh.V.row(v).transpose(); }
 

@@ -6,27 +6,22 @@
 #include <Eigen/Geometry>
 #include <random>
 
+#include "fixtures.h"
 #include "pixelcloth/core/body.h"
 #include "pixelcloth/core/error.h"
 
 namespace pc = pixelcloth::core;
 
+using pixelcloth::testing::coarseMannequin;
+
 namespace {
-const pc::Body& coarseBody() {
-  static const pc::Body body = [] {
-    pc::MannequinOptions options;
-    options.edgeLength = 0.02;
-    return pc::makeMannequin(options);
-  }();
-  return body;
-}
 
 /// Points 0-3 cm off the body near random body vertices, with u-directions tangent to the body there.
 struct Cloud {
   Eigen::MatrixX3d points, uDirections;
 };
 Cloud cloudAroundBody(int count) {
-  const pc::Body& body = coarseBody();
+  const pc::Body& body = coarseMannequin();
   Eigen::MatrixX3d normals = pc::vertexNormals(body.mesh.V, body.mesh.F);
   std::mt19937 rng(7);
   std::uniform_int_distribution<int> vertex(0, body.mesh.numVertices() - 1);
@@ -43,7 +38,7 @@ Cloud cloudAroundBody(int count) {
 }  // namespace
 
 TEST(Embedding, FramesAreOrthonormalAndOffsetsRoundTripOnRestAndPosedBodies) {
-  const pc::Body& body = coarseBody();
+  const pc::Body& body = coarseMannequin();
   Cloud cloud = cloudAroundBody(500);
   pc::Embedding embedding = pc::embedClosest(body.mesh.V, body.mesh.F, cloud.points, cloud.uDirections);
   EXPECT_NO_THROW(embedding.validate(body.mesh.numFaces()));
@@ -66,7 +61,7 @@ TEST(Embedding, FramesAreOrthonormalAndOffsetsRoundTripOnRestAndPosedBodies) {
 }
 
 TEST(Embedding, OffsetsAreInvariantUnderRigidMotionAndFollowThePose) {
-  const pc::Body& body = coarseBody();
+  const pc::Body& body = coarseMannequin();
   Cloud cloud = cloudAroundBody(300);
   pc::Embedding embedding = pc::embedClosest(body.mesh.V, body.mesh.F, cloud.points, cloud.uDirections);
   Eigen::MatrixX3d offsets =
@@ -97,7 +92,7 @@ TEST(Embedding, OffsetsAreInvariantUnderRigidMotionAndFollowThePose) {
 }
 
 TEST(Embedding, BadEmbeddingsAreRefused) {
-  const pc::Body& body = coarseBody();
+  const pc::Body& body = coarseMannequin();
   Cloud cloud = cloudAroundBody(10);
   pc::Embedding embedding = pc::embedClosest(body.mesh.V, body.mesh.F, cloud.points, cloud.uDirections);
   pc::Embedding outOfRange = embedding;

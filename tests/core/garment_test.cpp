@@ -11,6 +11,7 @@
 #include <set>
 #include <unordered_set>
 
+#include "fixtures.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/image.h"
 #include "pixelcloth/core/mesh.h"
@@ -19,12 +20,7 @@
 namespace pc = pixelcloth::core;
 
 namespace {
-
-/// The T-shirt with default options, built once for the whole suite (it takes a fraction of a second).
-const pc::Garment& shirt() {
-  static const pc::Garment garment = pc::makeTShirt();
-  return garment;
-}
+const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
 
 const pc::Garment& tie() {
   static const pc::Garment garment = pc::makeNecktie();

@@ -3,6 +3,7 @@
 
 #include <fstream>
 
+#include "fixtures.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/body.h"
 #include "pixelcloth/core/error.h"
@@ -16,16 +17,9 @@
 namespace pc = pixelcloth::core;
 namespace fs = std::filesystem;
 
+using pixelcloth::testing::coarseMannequin;
+
 namespace {
-/// A coarse mannequin (~2K vertices): enough for file round trips, quick to build.
-const pc::Body& coarseBody() {
-  static const pc::Body body = [] {
-    pc::MannequinOptions options;
-    options.edgeLength = 0.02;
-    return pc::makeMannequin(options);
-  }();
-  return body;
-}
 
 void expectError(const std::function<void()>& call, const std::vector<std::string>& parts) {
   std::string message = pixelcloth::testing::inputErrorOf(call);
@@ -35,7 +29,7 @@ void expectError(const std::function<void()>& call, const std::vector<std::strin
 
 TEST(BodyFolder, SaveThenLoadGivesTheSameBody) {
   fs::path dir = pixelcloth::testing::freshDir("body");
-  const pc::Body& body = coarseBody();
+  const pc::Body& body = coarseMannequin();
   pc::saveBody(dir, body, "test");
   for (const char* name : {"body.obj", "skeleton.json", "weights.npy", "parts.json"})
     EXPECT_TRUE(fs::exists(dir / name));
@@ -55,14 +49,14 @@ TEST(BodyFolder, SaveThenLoadGivesTheSameBody) {
 
 TEST(BodyFolder, WeightsForAnotherMeshAreRefused) {
   fs::path dir = pixelcloth::testing::freshDir("body");
-  pc::saveBody(dir, coarseBody(), "test");
+  pc::saveBody(dir, coarseMannequin(), "test");
   pc::writeNpy(dir / "weights.npy", Eigen::MatrixXf(Eigen::MatrixXf::Constant(100, 12, 1.0f / 12)));
-  expectError([&] { pc::loadBody(dir); }, {"weights.npy", "100", std::to_string(coarseBody().mesh.numVertices())});
+  expectError([&] { pc::loadBody(dir); }, {"weights.npy", "100", std::to_string(coarseMannequin().mesh.numVertices())});
 }
 
 TEST(BodyFolder, BrokenFilesAreNamed) {
   fs::path dir = pixelcloth::testing::freshDir("body");
-  pc::saveBody(dir, coarseBody(), "test");
+  pc::saveBody(dir, coarseMannequin(), "test");
   expectError([&] { pc::loadBody(dir / "nope"); }, {"nope", "no such body folder"});
 
   std::string skeleton = pc::readTextFile(dir / "skeleton.json");
@@ -76,8 +70,8 @@ TEST(BodyFolder, BrokenFilesAreNamed) {
   expectError([&] { pc::loadBody(dir); }, {"left_arm", "10000000"});
 
   // Weights that do not sum to one.
-  pc::saveBody(dir, coarseBody(), "test");
-  Eigen::MatrixXf w = coarseBody().weights.cast<float>();
+  pc::saveBody(dir, coarseMannequin(), "test");
+  Eigen::MatrixXf w = coarseMannequin().weights.cast<float>();
   w(7, 0) += 0.5f;
   pc::writeNpy(dir / "weights.npy", w);
   expectError([&] { pc::loadBody(dir); }, {"vertex 7", "sum"});

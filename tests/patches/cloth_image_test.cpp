@@ -7,6 +7,7 @@
 #include <fstream>
 #include <set>
 
+#include "../core/fixtures.h"
 #include "../core/test_util.h"
 #include "pixelcloth/core/garment.h"
 
@@ -16,11 +17,7 @@ using pixelcloth::testing::freshDir;
 using pixelcloth::testing::inputErrorOf;
 
 namespace {
-
-const pc::Garment& shirt() {
-  static const pc::Garment garment = pc::makeTShirt();
-  return garment;
-}
+const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
 
 const pp::ClothImager& shirtImager() {
   static const pp::ClothImager imager(shirt());

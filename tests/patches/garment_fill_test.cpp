@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../core/fixtures.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/garment.h"
@@ -11,10 +12,7 @@ namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;
 
 namespace {
-const pc::Garment& shirt() {
-  static const pc::Garment garment = pc::makeTShirt();
-  return garment;
-}
+const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
 pp::GarmentFill shirtFill() {
   pixelcloth::cage::Cage cage = pixelcloth::cage::garmentCage(shirt());
   return pp::GarmentFill(shirt(), pp::segmentPatches(shirt(), pixelcloth::cage::cutEdges(cage)));

@@ -4,6 +4,7 @@
 
 #include <set>
 
+#include "../core/fixtures.h"
 #include "pixelcloth/core/garment.h"
 #include "pixelcloth/patches/frame.h"
 #include "pixelcloth/patches/patch.h"
@@ -13,6 +14,7 @@ namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;
 
 namespace {
+const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
 /// Every edge of the garment's seams and cage lines (openings are layout boundaries anyway). The same set the cage
 /// module's cutEdges gives; built here because patches/ comes before cage/ in the module order.
 std::vector<std::pair<int, int>> garmentCuts(const pc::Garment& g) {
@@ -26,10 +28,6 @@ std::vector<std::pair<int, int>> garmentCuts(const pc::Garment& g) {
   return cuts;
 }
 
-const pc::Garment& shirt() {
-  static const pc::Garment garment = pc::makeTShirt();
-  return garment;
-}
 const std::vector<pp::Patch>& shirtPatches() {
   static const std::vector<pp::Patch> patches = pp::segmentPatches(shirt(), garmentCuts(shirt()));
   return patches;

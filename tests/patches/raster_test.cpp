@@ -9,6 +9,7 @@
 #include <functional>
 #include <iostream>
 
+#include "../core/fixtures.h"
 #include "../core/test_util.h"
 #include "pixelcloth/core/garment.h"
 #include "pixelcloth/patches/frame.h"
@@ -19,11 +20,7 @@ using pixelcloth::testing::freshDir;
 using pixelcloth::testing::inputErrorOf;
 
 namespace {
-
-const pc::Garment& shirt() {
-  static const pc::Garment garment = pc::makeTShirt();
-  return garment;
-}
+const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
 
 using Field = std::function<double(const Eigen::Vector2d&)>;
 

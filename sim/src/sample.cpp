@@ -1,0 +1,19 @@
+#include "pixelcloth/sim/sample.h"
+
+namespace pixelcloth::sim {
+
+const char* rejectionName(Rejection rejection) {
+  switch (rejection) {
+    case Rejection::None:
+      return "none";
+    case Rejection::TriangleShrank:
+      return "triangle_shrank";
+    case Rejection::TriangleGrew:
+      return "triangle_grew";
+    case Rejection::NotFinite:
+      return "not_finite";
+  }
+  return "unknown";
+}
+
+}  // namespace pixelcloth::sim

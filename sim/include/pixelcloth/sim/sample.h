@@ -13,20 +13,20 @@ const char* rejectionName(Rejection rejection);
 
 /// What the quasistatic solver reports for one pose.
 struct SampleStats {
-  int iterations = 0;           ///< solver iterations over all continuation steps
-  double residual = 0;          ///< largest vertex move in the last iteration (metres)
-  double maxPenetration = 0;    ///< deepest cloth vertex inside its collision part (metres, >= 0)
-  double minAreaRatio = 1;      ///< smallest triangle area over its pattern (rest) area
-  double maxAreaRatio = 1;      ///< largest such ratio
-  double seconds = 0;           ///< wall time of the solve
+  int iterations = 0;         ///< solver iterations over all continuation steps
+  double residual = 0;        ///< largest vertex move in the last iteration (metres)
+  double maxPenetration = 0;  ///< deepest cloth vertex inside its collision part (metres, >= 0)
+  double minAreaRatio = 1;    ///< smallest triangle area over its pattern (rest) area
+  double maxAreaRatio = 1;    ///< largest such ratio
+  double seconds = 0;         ///< wall time of the solve
   Rejection rejection = Rejection::None;
 };
 
 /// One simulated (or imported) sample: the pose and the garment's shape.
 struct Sample {
-  Eigen::VectorXf pose;         ///< 90 floats (T-shirt) or the first 36 (necktie), core::Pose::toVector order
-  Eigen::MatrixX3f positions;   ///< #V x 3 world positions (metres)
-  Eigen::MatrixX3f offsets;     ///< #V x 3 offsets (du, dv, dn) in the embedded frames of the posed body
+  Eigen::VectorXf pose;        ///< 90 floats (T-shirt) or the first 36 (necktie), core::Pose::toVector order
+  Eigen::MatrixX3f positions;  ///< #V x 3 world positions (metres)
+  Eigen::MatrixX3f offsets;    ///< #V x 3 offsets (du, dv, dn) in the embedded frames of the posed body
   SampleStats stats;
 };
 

@@ -1,0 +1,91 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <memory>
+#include <vector>
+
+#include "pixelcloth/core/mesh.h"
+
+namespace pixelcloth::sim {
+
+/// Material and solver settings of the quasistatic cloth solver. Units: SI (metres, kilograms, newtons).
+struct QuasistaticOptions {
+  double stretchStiffness = 60.0;  ///< membrane stiffness k_s (N/m): energy k_s/2 * area * |F - R|^2 per triangle
+  double bendStiffness = 2e-6;     ///< bending stiffness k_b (N m): quadratic (isometric) bending, flat rest shape
+  double density = 0.15;           ///< areal density (kg/m^2), a cotton jersey T-shirt
+  double gravity = 9.81;           ///< m/s^2 along -y
+  /// Proximal time scale h (s): each iteration minimises E(x) + |x - x_k|^2_M / (2 h^2), a fully damped implicit
+  /// step, so the iterates descend to the static equilibrium. Larger is faster and less robust.
+  double timeScale = 0.06;
+  double pinStiffness = 1e4;  ///< pins follow their targets with this stiffness (N/m)
+  /// Contact: a vertex closer than `contactActivation` to its collider at the last closest-point query gets a contact
+  /// plane through its closest point and is kept at least `contactOffset` outside it after every iteration.
+  double contactOffset = 0.001;
+  double contactActivation = 0.02;
+  int contactQueryEvery = 4;  ///< iterations between closest-point queries (planes follow the collider in between)
+  /// Stopping tolerance: the largest vertex move in one iteration (metres). A move of d per iteration means an
+  /// unbalanced force per unit mass of about d / h^2: 2e-5 m at h = 0.06 s is 0.0056 m/s^2, 0.06% of gravity.
+  double tolerance = 2e-5;
+  void validate() const;
+};
+
+/// A triangle mesh the cloth must stay outside of (a body part), in its current (posed) placement.
+struct Collider {
+  Eigen::MatrixX3d V;
+  Eigen::MatrixX3i F;  ///< oriented outwards
+};
+
+/// What one call to `QuasistaticSolver::relax` did.
+struct RelaxReport {
+  int iterations = 0;
+  double residual = 0;  ///< largest vertex move in the last iteration (metres)
+  bool converged = false;
+};
+
+/// Static equilibrium of cloth under gravity against colliders, by projective dynamics (Bouaziz et al. 2014) with a
+/// proximal term instead of inertia: per iteration a local step (each triangle's deformation gradient projected to
+/// the nearest rotation) and a global step (one prefactored sparse Cholesky solve, three right-hand sides), followed
+/// by contact projection onto per-vertex contact planes. The rest shape of every triangle is its pattern triangle
+/// (per-corner UVs in metres), so seams sewn across pattern pieces are rest-free; bending is the quadratic isometric
+/// model (Bergou et al. 2006) with a flat rest state. The system matrix depends only on the cloth and the pins, so it
+/// is factored once and shared; colliders and pin targets change freely between calls.
+class QuasistaticSolver {
+ public:
+  /// `cloth`: faces F plus per-corner pattern coordinates UV / FUV (the rest shape); `pinned`: vertex indices held
+  /// at targets (may be empty). Throws InputError for degenerate pattern triangles or missing UVs.
+  QuasistaticSolver(const core::Mesh& cloth, const std::vector<int>& pinned, const QuasistaticOptions& options = {});
+  ~QuasistaticSolver();
+  QuasistaticSolver(QuasistaticSolver&&) noexcept;
+
+  /// Colliders and, per cloth vertex, the index of the one it collides with (-1: none).
+  void setColliders(std::vector<Collider> colliders, std::vector<int> vertexCollider);
+  /// Moves the colliders' vertices (same faces as before) and keeps each vertex's contact plane on the same collider
+  /// triangle, so continuation steps need no new query to start.
+  void moveColliders(const std::vector<Eigen::MatrixX3d>& vertices);
+  /// Targets of the pinned vertices, #pinned x 3, in the order given to the constructor.
+  void setPinTargets(const Eigen::MatrixX3d& targets);
+
+  /// Runs at most `maxIterations` iterations from `x` (#V x 3, updated in place); stops early when the largest move
+  /// of an iteration falls below the tolerance (unless `minIterations` have not run yet).
+  RelaxReport relax(Eigen::MatrixX3d& x, int maxIterations, int minIterations = 0);
+
+  /// Depth of each vertex inside its collider (metres, 0 when outside or without collider), by an exact closest-point
+  /// query; inside means behind the closest collider triangle's plane.
+  Eigen::VectorXd penetration(const Eigen::MatrixX3d& x) const;
+  /// Per triangle, current area over pattern area.
+  Eigen::VectorXd areaRatios(const Eigen::MatrixX3d& x) const;
+  /// Total potential energy (stretch + bending + gravity + pins), joules; it never increases from one iteration to
+  /// the next while no contact is active.
+  double energy(const Eigen::MatrixX3d& x) const;
+
+  int numVertices() const;
+  const QuasistaticOptions& options() const { return options_; }
+
+ private:
+  struct Impl;
+  QuasistaticOptions options_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pixelcloth::sim

@@ -1,0 +1,194 @@
+#include "pixelcloth/sim/quasistatic.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "../core/test_util.h"
+#include "pixelcloth/core/error.h"
+#include "pixelcloth/core/mesh.h"
+
+namespace pixelcloth::sim {
+namespace {
+
+/// A square sheet of side `size` with n x n vertices, lying in the plane y = height, pattern = its flat layout. The
+/// diagonals mirror at x = 0 and z = 0, so the triangulation is as symmetric as the square.
+core::Mesh sheet(int n, double size, double height) {
+  core::Mesh mesh;
+  mesh.V.resize(n * n, 3);
+  mesh.UV.resize(n * n, 2);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double u = size * j / (n - 1) - size / 2, v = size * i / (n - 1) - size / 2;
+      mesh.V.row(i * n + j) << u, height, v;
+      mesh.UV.row(i * n + j) << u, v;
+    }
+  mesh.F.resize(2 * (n - 1) * (n - 1), 3);
+  int f = 0;
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = 0; j + 1 < n; ++j) {
+      const int a = i * n + j, b = a + 1, c = a + n, d = c + 1;
+      if ((2 * j < n - 1) == (2 * i < n - 1)) {
+        mesh.F.row(f++) << a, c, b;
+        mesh.F.row(f++) << b, c, d;
+      } else {
+        mesh.F.row(f++) << a, c, d;
+        mesh.F.row(f++) << a, d, b;
+      }
+    }
+  mesh.FUV = mesh.F;
+  return mesh;
+}
+
+/// A UV sphere (closed, outward faces) of radius r centred at the origin.
+Collider sphere(double r, int rings = 24, int segments = 48) {
+  Collider s;
+  s.V.resize(2 + (rings - 1) * segments, 3);
+  s.V.row(0) << 0, r, 0;
+  s.V.row(1) << 0, -r, 0;
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const double theta = M_PI * i / rings, phi = 2 * M_PI * j / segments;
+      s.V.row(2 + (i - 1) * segments + j) << r * std::sin(theta) * std::cos(phi), r * std::cos(theta),
+          r * std::sin(theta) * std::sin(phi);
+    }
+  std::vector<Eigen::Vector3i> faces;
+  auto ring = [&](int i, int j) { return 2 + (i - 1) * segments + (j % segments); };
+  for (int j = 0; j < segments; ++j) {
+    faces.emplace_back(0, ring(1, j + 1), ring(1, j));
+    faces.emplace_back(1, ring(rings - 1, j), ring(rings - 1, j + 1));
+    for (int i = 1; i + 1 < rings; ++i) {
+      faces.emplace_back(ring(i, j), ring(i, j + 1), ring(i + 1, j));
+      faces.emplace_back(ring(i, j + 1), ring(i + 1, j + 1), ring(i + 1, j));
+    }
+  }
+  s.F.resize(static_cast<int>(faces.size()), 3);
+  for (int f = 0; f < s.F.rows(); ++f) s.F.row(f) = faces[f].transpose();
+  return s;
+}
+
+TEST(Quasistatic, HangingSheetConvergesSymmetricallyWithEnergyNeverRising) {
+  const int n = 15;
+  const core::Mesh cloth = sheet(n, 0.4, 1.0);
+  // Pin the two corners of one edge (row 0), so the sheet hangs like a curtain.
+  const std::vector<int> pins = {0, n - 1};
+  QuasistaticSolver solver(cloth, pins);
+  Eigen::MatrixX3d targets(2, 3);
+  targets.row(0) = cloth.V.row(0);
+  targets.row(1) = cloth.V.row(n - 1);
+  solver.setPinTargets(targets);
+
+  Eigen::MatrixX3d x = cloth.V;
+  double previous = solver.energy(x);
+  for (int round = 0; round < 40; ++round) {
+    solver.relax(x, 5);
+    const double e = solver.energy(x);
+    EXPECT_LE(e, previous + 1e-12) << "round " << round;
+    previous = e;
+  }
+  const RelaxReport report = solver.relax(x, 3000);
+  EXPECT_TRUE(report.converged) << "residual " << report.residual;
+  EXPECT_TRUE(x.allFinite());
+  // It fell: the free edge hangs well below the pinned one.
+  EXPECT_LT(x(n * (n - 1) + n / 2, 1), 0.75);
+  // Mirror symmetry about the plane x = 0: vertex (i, j) mirrors (i, n-1-j).
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const Eigen::Vector3d a = x.row(i * n + j), b = x.row(i * n + n - 1 - j);
+      EXPECT_NEAR(a.x(), -b.x(), 1e-4);
+      EXPECT_NEAR(a.y(), b.y(), 1e-4);
+    }
+  // Cloth barely stretches under its own weight: most triangles keep their area within 5%; next to the two pins,
+  // which carry all the weight, within 25%.
+  Eigen::VectorXd ratio = solver.areaRatios(x);
+  std::sort(ratio.data(), ratio.data() + ratio.size());
+  EXPECT_NEAR(ratio(ratio.size() / 2), 1.0, 0.05);
+  EXPECT_LT(ratio.maxCoeff(), 1.25);
+}
+
+TEST(Quasistatic, SheetDrapesOverSphereWithoutPassingThrough) {
+  const int n = 31;
+  const double radius = 0.2;
+  const core::Mesh cloth = sheet(n, 0.7, radius + 0.02);
+  // Without friction a sheet slides off a ball, so its centre is pinned 2 mm above the top of the sphere.
+  const int centre = (n / 2) * n + n / 2;
+  QuasistaticSolver solver(cloth, {centre});
+  solver.setPinTargets(Eigen::RowVector3d(0, radius + 0.002, 0));
+  solver.setColliders({sphere(radius)}, std::vector<int>(n * n, 0));
+  Eigen::MatrixX3d x = cloth.V;
+  const RelaxReport report = solver.relax(x, 6000);
+  EXPECT_TRUE(report.converged) << "residual " << report.residual << " after " << report.iterations;
+  EXPECT_TRUE(x.allFinite());
+  EXPECT_LT(solver.penetration(x).maxCoeff(), 0.002);
+  // The corners hang down past the equator, and no vertex is inside the ball (the polygonal sphere lies inside
+  // the true one by at most r (1 - cos(pi / 24))).
+  EXPECT_LT(x(0, 1), 0.0);
+  EXPECT_GT(x.rowwise().norm().minCoeff(), radius * std::cos(M_PI / 24) - 0.002);
+  // Triangles keep their area within 5% (median); the most stretched one is next to the pin.
+  Eigen::VectorXd ratio = solver.areaRatios(x);
+  std::sort(ratio.data(), ratio.data() + ratio.size());
+  EXPECT_NEAR(ratio(ratio.size() / 2), 1.0, 0.05);
+  EXPECT_LT(ratio.maxCoeff(), 1.4);
+}
+
+/// A closed axis-aligned box [lo, hi], faces outwards.
+Collider box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  Collider b;
+  b.V.resize(8, 3);
+  for (int k = 0; k < 8; ++k)
+    b.V.row(k) << (k & 1 ? hi.x() : lo.x()), (k & 2 ? hi.y() : lo.y()), (k & 4 ? hi.z() : lo.z());
+  b.F.resize(12, 3);
+  b.F << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5;
+  return b;
+}
+
+TEST(Quasistatic, CollidersMoveAndTheClothFollows) {
+  const int n = 21;
+  const core::Mesh cloth = sheet(n, 0.5, 0.01);
+  QuasistaticSolver solver(cloth, {});
+  const Collider table = box({-1, -0.1, -1}, {1, 0, 1});
+  ASSERT_GT(core::enclosedVolume(table.V, table.F), 0);
+  solver.setColliders({table}, std::vector<int>(n * n, 0));
+  Eigen::MatrixX3d x = cloth.V;
+  EXPECT_TRUE(solver.relax(x, 3000).converged);
+  const double before = x.col(1).mean();
+  EXPECT_NEAR(before, solver.options().contactOffset, 1e-4);
+  // Lift the table by 5 cm in steps: the cloth rides up with it and stays flat.
+  for (int step = 1; step <= 5; ++step) {
+    Eigen::MatrixX3d moved = table.V;
+    moved.col(1).array() += 0.01 * step;
+    solver.moveColliders({moved});
+    solver.relax(x, 100);
+  }
+  EXPECT_TRUE(solver.relax(x, 3000).converged);
+  EXPECT_NEAR(x.col(1).mean() - before, 0.05, 1e-4);
+  EXPECT_LT(x.col(1).maxCoeff() - x.col(1).minCoeff(), 1e-4);
+  EXPECT_LT(solver.penetration(x).maxCoeff(), 1e-6);
+}
+
+TEST(Quasistatic, BadInputIsRefused) {
+  core::Mesh cloth = sheet(4, 0.1, 0.0);
+  core::Mesh noUV = cloth;
+  noUV.UV.resize(0, 2);
+  noUV.FUV.resize(0, 3);
+  EXPECT_NE(testing::inputErrorOf([&] { QuasistaticSolver s(noUV, {}); }).find("pattern coordinates"),
+            std::string::npos);
+  core::Mesh degenerate = cloth;
+  degenerate.UV.row(degenerate.FUV(0, 1)) = degenerate.UV.row(degenerate.FUV(0, 0));
+  EXPECT_NE(testing::inputErrorOf([&] { QuasistaticSolver s(degenerate, {}); }).find("degenerate"), std::string::npos);
+  EXPECT_NE(testing::inputErrorOf([&] { QuasistaticSolver s(cloth, {99}); }).find("pinned vertex 99"),
+            std::string::npos);
+  QuasistaticSolver solver(cloth, {});
+  EXPECT_NE(testing::inputErrorOf([&] { solver.setColliders({}, std::vector<int>(16, 0)); }).find("out of range"),
+            std::string::npos);
+  Eigen::MatrixX3d wrong = Eigen::MatrixX3d::Zero(3, 3);
+  EXPECT_NE(testing::inputErrorOf([&] { solver.relax(wrong, 1); }).find("3 positions for 16"), std::string::npos);
+  QuasistaticOptions options;
+  options.timeScale = -1;
+  EXPECT_NE(testing::inputErrorOf([&] { QuasistaticSolver s(cloth, {}, options); }).find("time scale"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace pixelcloth::sim

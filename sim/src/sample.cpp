@@ -12,6 +12,8 @@ const char* rejectionName(Rejection rejection) {
       return "triangle_grew";
     case Rejection::NotFinite:
       return "not_finite";
+    case Rejection::ArmInsideTorso:
+      return "arm_inside_torso";
   }
   return "unknown";
 }

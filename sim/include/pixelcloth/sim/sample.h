@@ -5,10 +5,11 @@
 
 namespace pixelcloth::sim {
 
-/// Why a simulated sample was discarded (paper: a triangle shrank by more than 75% or grew by more than 100%).
-enum class Rejection { None, TriangleShrank, TriangleGrew, NotFinite };
+/// Why a drawn sample was discarded: the pose sampler pruned it (an arm inside the torso), or the simulation failed
+/// the paper's test (a triangle shrank by more than 75% or grew by more than 100%), or did not stay finite.
+enum class Rejection { None, TriangleShrank, TriangleGrew, NotFinite, ArmInsideTorso };
 
-/// "none", "triangle_shrank", "triangle_grew", "not_finite".
+/// "none", "triangle_shrank", "triangle_grew", "not_finite", "arm_inside_torso".
 const char* rejectionName(Rejection rejection);
 
 /// What the quasistatic solver reports for one pose.

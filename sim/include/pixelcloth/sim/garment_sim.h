@@ -1,0 +1,73 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "pixelcloth/cage/dressing.h"
+#include "pixelcloth/core/body.h"
+#include "pixelcloth/core/garment.h"
+#include "pixelcloth/core/skeleton.h"
+#include "pixelcloth/sim/quasistatic.h"
+#include "pixelcloth/sim/sample.h"
+
+namespace pixelcloth::sim {
+
+/// Settings of a garment simulation: the solver's material and tolerance, the continuation schedule and the
+/// paper's acceptance test.
+struct SimulationOptions {
+  QuasistaticOptions solver;
+  double stepDegrees = 15;     ///< continuation: no joint turns by more than this between two steps
+  int iterationsPerStep = 30;  ///< solver iterations per continuation step (the last step runs to convergence)
+  int finalIterations = 600;   ///< at most this many iterations at the target pose
+  int restIterations = 3000;   ///< at most this many to settle the dressed garment in the rest pose (once)
+  double minAreaRatio = 0.25;  ///< reject when a triangle keeps less than this of its pattern area (shrank > 75%)
+  double maxAreaRatio = 2.0;   ///< reject when a triangle more than doubles its pattern area (grew > 100%)
+  /// Cloth vertices held to the body: they follow their embedded point with the rest offset. Empty for the T-shirt;
+  /// `defaultPins` gives the necktie's knot.
+  std::vector<int> pinned;
+  void validate() const;
+};
+
+/// The vertices a garment is held by: for the necktie those within 4 cm of the top of its rest placement (the knot
+/// end, which hangs from the collar); none for the T-shirt, which rests on the shoulders.
+std::vector<int> defaultPins(const core::Garment& garment);
+
+/// Quasistatic drape of one garment on one body for any pose (DESIGN.md "Simulation"). Built once per garment and
+/// body: the system is factored and the dressed garment settled under gravity in the rest pose; `simulate` then
+/// walks the body from the rest pose to the target pose in steps of at most `stepDegrees` per joint (rotations
+/// interpolated along their axis), relaxing the cloth at every step, and runs the last step to convergence. Each
+/// cloth vertex collides only with its primary body part (Dressing::part). Not thread-safe: one per thread.
+class GarmentSimulator {
+ public:
+  /// `settled`: the rest drape of another simulator of the same garment, body and options (skips settling again).
+  GarmentSimulator(const core::Body& body, const core::Garment& garment, const cage::Dressing& dressing,
+                   const SimulationOptions& options = {}, const Eigen::MatrixX3d* settled = nullptr);
+  ~GarmentSimulator();
+
+  /// Drapes the garment on the body in `pose`. Never throws for a hard pose: a sample that fails the acceptance test
+  /// comes back with `stats.rejection` set (positions still filled for inspection).
+  Sample simulate(const core::Pose& pose);
+
+  /// The garment settled in the rest pose (#V x 3).
+  const Eigen::MatrixX3d& restDrape() const { return rest_; }
+  /// Statistics of the rest settle.
+  const SampleStats& restStats() const { return restStats_; }
+
+ private:
+  void placeBody(const core::Pose& pose);
+  SampleStats measure(const Eigen::MatrixX3d& x) const;
+
+  const core::Body& body_;
+  const core::Garment& garment_;
+  const cage::Dressing& dressing_;
+  SimulationOptions options_;
+  std::unique_ptr<QuasistaticSolver> solver_;
+  std::vector<std::vector<int>> partVertices_;  ///< per body part, its body vertices (collider vertex order)
+  Eigen::MatrixX3d restOffsets_;                ///< offsets of the pinned vertices in the rest pose
+  Eigen::MatrixX3d rest_;
+  Eigen::MatrixX3d posedBody_;
+  SampleStats restStats_;
+};
+
+}  // namespace pixelcloth::sim

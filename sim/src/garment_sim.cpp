@@ -1,0 +1,184 @@
+#include "pixelcloth/sim/garment_sim.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "pixelcloth/core/error.h"
+
+namespace pixelcloth::sim {
+
+namespace {
+
+/// The pose a fraction `t` of the way from the rest pose: every joint rotation scaled along its own axis.
+core::Pose partialPose(const core::Pose& pose, double t) {
+  core::Pose result = core::Pose::identity();
+  for (size_t j = 0; j < pose.rotations.size(); ++j) {
+    const Eigen::AngleAxisd full(pose.rotations[j]);
+    result.rotations[j] = Eigen::AngleAxisd(t * full.angle(), full.axis()).toRotationMatrix();
+  }
+  return result;
+}
+
+/// The largest joint rotation angle of a pose (degrees).
+double largestJointAngle(const core::Pose& pose) {
+  double largest = 0;
+  for (const Eigen::Matrix3d& rotation : pose.rotations)
+    largest = std::max(largest, Eigen::AngleAxisd(rotation).angle() * 180.0 / M_PI);
+  return largest;
+}
+
+}  // namespace
+
+void SimulationOptions::validate() const {
+  solver.validate();
+  PIXELCLOTH_CHECK(stepDegrees > 0 && stepDegrees <= 180, "simulation: step must be in (0, 180] degrees, got "
+                                                              << stepDegrees);
+  PIXELCLOTH_CHECK(iterationsPerStep >= 1 && finalIterations >= 1 && restIterations >= 1,
+                   "simulation: iteration counts must be positive");
+  PIXELCLOTH_CHECK(minAreaRatio > 0 && minAreaRatio < 1 && maxAreaRatio > 1,
+                   "simulation: need 0 < min area ratio < 1 < max area ratio, got " << minAreaRatio << " and "
+                                                                                    << maxAreaRatio);
+}
+
+std::vector<int> defaultPins(const core::Garment& garment) {
+  std::vector<int> pins;
+  if (garment.name != "necktie") return pins;
+  const double top = garment.mesh.V.col(1).maxCoeff();
+  for (int v = 0; v < garment.mesh.numVertices(); ++v)
+    if (garment.mesh.V(v, 1) > top - 0.04) pins.push_back(v);
+  return pins;
+}
+
+GarmentSimulator::GarmentSimulator(const core::Body& body, const core::Garment& garment,
+                                   const cage::Dressing& dressing, const SimulationOptions& options,
+                                   const Eigen::MatrixX3d* settled)
+    : body_(body), garment_(garment), dressing_(dressing), options_(options) {
+  options_.validate();
+  const int n = garment.mesh.numVertices();
+  PIXELCLOTH_CHECK(dressing.relaxed.rows() == n && dressing.embedding.size() == n &&
+                       static_cast<int>(dressing.part.size()) == n,
+                   "simulation: the dressing has " << dressing.relaxed.rows() << " vertices, the garment " << n);
+  dressing.embedding.validate(body.mesh.numFaces(), "simulation: dressing");
+  solver_ = std::make_unique<QuasistaticSolver>(garment.mesh, options_.pinned, options_.solver);
+
+  // One collider per body part, with its own compact vertex numbering.
+  std::vector<Collider> colliders;
+  for (const core::BodyPart& part : body.parts) {
+    std::vector<int> local(body.mesh.numVertices(), -1);
+    std::vector<int>& vertices = partVertices_.emplace_back();
+    Collider collider;
+    collider.F.resize(static_cast<int>(part.faces.size()), 3);
+    for (size_t f = 0; f < part.faces.size(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int v = body.mesh.F(part.faces[f], k);
+        if (local[v] < 0) {
+          local[v] = static_cast<int>(vertices.size());
+          vertices.push_back(v);
+        }
+        collider.F(static_cast<int>(f), k) = local[v];
+      }
+    collider.V.resize(static_cast<int>(vertices.size()), 3);
+    for (size_t i = 0; i < vertices.size(); ++i) collider.V.row(static_cast<int>(i)) = body.mesh.V.row(vertices[i]);
+    colliders.push_back(std::move(collider));
+  }
+  for (const int p : dressing.part)
+    PIXELCLOTH_CHECK(p >= 0 && p < static_cast<int>(body.parts.size()),
+                     "simulation: dressing names body part " << p << ", the body has " << body.parts.size());
+  solver_->setColliders(std::move(colliders), dressing.part);
+
+  // Pins keep their dressed offsets from the body.
+  const core::EmbeddedFrames frames = core::embeddedFrames(body.mesh.V, body.mesh.F, dressing.embedding);
+  const Eigen::MatrixX3d offsets = core::offsetsFromPositions(frames, dressing.relaxed);
+  restOffsets_.resize(static_cast<int>(options_.pinned.size()), 3);
+  for (size_t k = 0; k < options_.pinned.size(); ++k)
+    restOffsets_.row(static_cast<int>(k)) = offsets.row(options_.pinned[k]);
+
+  // Settle the dressed garment under gravity in the rest pose; every pose starts from here.
+  const auto start = std::chrono::steady_clock::now();
+  placeBody(core::Pose::identity());
+  rest_ = settled ? *settled : dressing.relaxed;
+  PIXELCLOTH_CHECK(rest_.rows() == n, "simulation: the settled garment has " << rest_.rows() << " vertices, not " << n);
+  const RelaxReport report = solver_->relax(rest_, settled ? 1 : options_.restIterations);
+  restStats_ = measure(rest_);
+  restStats_.iterations = report.iterations;
+  restStats_.residual = report.residual;
+  restStats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  PIXELCLOTH_CHECK(rest_.allFinite(), "simulation: the garment did not settle in the rest pose (not finite)");
+}
+
+GarmentSimulator::~GarmentSimulator() = default;
+
+void GarmentSimulator::placeBody(const core::Pose& pose) {
+  posedBody_ = body_.posedVertices(pose);
+  std::vector<Eigen::MatrixX3d> placed;
+  for (const std::vector<int>& vertices : partVertices_) {
+    Eigen::MatrixX3d V(static_cast<int>(vertices.size()), 3);
+    for (size_t i = 0; i < vertices.size(); ++i) V.row(static_cast<int>(i)) = posedBody_.row(vertices[i]);
+    placed.push_back(std::move(V));
+  }
+  solver_->moveColliders(placed);
+  if (!options_.pinned.empty()) {
+    core::Embedding pinEmbedding;
+    const int p = static_cast<int>(options_.pinned.size());
+    pinEmbedding.triangle.resize(p);
+    pinEmbedding.barycentric.resize(p, 3);
+    pinEmbedding.tangentCoords.resize(p, 2);
+    for (int k = 0; k < p; ++k) {
+      const int v = options_.pinned[k];
+      pinEmbedding.triangle(k) = dressing_.embedding.triangle(v);
+      pinEmbedding.barycentric.row(k) = dressing_.embedding.barycentric.row(v);
+      pinEmbedding.tangentCoords.row(k) = dressing_.embedding.tangentCoords.row(v);
+    }
+    const core::EmbeddedFrames frames = core::embeddedFrames(posedBody_, body_.mesh.F, pinEmbedding);
+    solver_->setPinTargets(core::positionsFromOffsets(frames, restOffsets_));
+  }
+}
+
+SampleStats GarmentSimulator::measure(const Eigen::MatrixX3d& x) const {
+  SampleStats stats;
+  if (!x.allFinite()) {
+    stats.rejection = Rejection::NotFinite;
+    return stats;
+  }
+  const Eigen::VectorXd ratio = solver_->areaRatios(x);
+  stats.minAreaRatio = ratio.minCoeff();
+  stats.maxAreaRatio = ratio.maxCoeff();
+  stats.maxPenetration = solver_->penetration(x).maxCoeff();
+  if (stats.minAreaRatio < options_.minAreaRatio)
+    stats.rejection = Rejection::TriangleShrank;
+  else if (stats.maxAreaRatio > options_.maxAreaRatio)
+    stats.rejection = Rejection::TriangleGrew;
+  return stats;
+}
+
+Sample GarmentSimulator::simulate(const core::Pose& pose) {
+  const auto start = std::chrono::steady_clock::now();
+  const int steps = std::max(1, static_cast<int>(std::ceil(largestJointAngle(pose) / options_.stepDegrees)));
+  Eigen::MatrixX3d x = rest_;
+  int iterations = 0;
+  RelaxReport report;
+  for (int step = 1; step <= steps && x.allFinite(); ++step) {
+    placeBody(partialPose(pose, static_cast<double>(step) / steps));
+    report = solver_->relax(x, step < steps ? options_.iterationsPerStep : options_.finalIterations);
+    iterations += report.iterations;
+  }
+  Sample sample;
+  sample.stats = measure(x);
+  sample.stats.iterations = iterations;
+  sample.stats.residual = report.residual;
+  sample.pose = pose.toVector();
+  if (garment_.name == "necktie") sample.pose = sample.pose.head(36).eval();
+  sample.positions = x.cast<float>();
+  if (sample.stats.rejection != Rejection::NotFinite) {
+    const core::EmbeddedFrames frames = core::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding);
+    sample.offsets = core::offsetsFromPositions(frames, x).cast<float>();
+  } else {
+    sample.offsets = Eigen::MatrixX3f::Constant(x.rows(), 3, std::nanf(""));
+  }
+  sample.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return sample;
+}
+
+}  // namespace pixelcloth::sim

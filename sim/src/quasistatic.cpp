@@ -74,6 +74,7 @@ struct ColliderState {
 struct Contact {
   int face = -1;  ///< -1: inactive
   Eigen::Vector3d bary = Eigen::Vector3d::Zero();
+  double budget = 0;  ///< inactive: how far the vertex may still move before it must look again (metres)
 };
 
 /// A sparse Cholesky factor P^T L L^T P (Eigen's SimplicialLLT, AMD ordering) with a solve for three right-hand
@@ -140,6 +141,8 @@ void QuasistaticOptions::validate() const {
       contactOffset >= 0 && contactActivation > contactOffset,
       "solver: need 0 <= contact offset < contact activation, got " << contactOffset << " and " << contactActivation);
   PIXELCLOTH_CHECK(contactQueryEvery >= 1, "solver: contact query interval must be >= 1");
+  PIXELCLOTH_CHECK(maxStep > 0 && maxStep < contactActivation,
+                   "solver: need 0 < max step < contact activation, got " << maxStep);
   PIXELCLOTH_CHECK(tolerance > 0, "solver: tolerance must be positive, got " << tolerance);
 }
 
@@ -158,19 +161,40 @@ struct QuasistaticSolver::Impl {
   int sinceQuery = 0;
   bool queryNeeded = true;
 
-  void queryContacts(const Eigen::MatrixX3d& x, double activation) {
-    for (int v = 0; v < x.rows(); ++v) {
-      const int c = v < static_cast<int>(vertexCollider.size()) ? vertexCollider[v] : -1;
-      contacts[v] = Contact{};
-      if (c < 0) continue;
-      const Eigen::Vector3d p = x.row(v);
-      auto [face, bary] = colliders[c].closest(p);
-      const Eigen::Vector3d q = colliders[c].pointAt(face, bary);
-      const double signedDistance = (p - q).dot(colliders[c].faceNormal(face));
-      if (signedDistance < activation) contacts[v] = Contact{face, bary};
+  /// Finds the contact plane of vertex v at `p`: active when p is closer than `activation` to its collider (or
+  /// inside); otherwise the vertex may travel its distance minus the activation before it needs another look.
+  void queryContact(int v, const Eigen::Vector3d& p, double activation) {
+    contacts[v] = Contact{};
+    const int c = vertexCollider[v];
+    if (c < 0) return;
+    auto [face, bary] = colliders[c].closest(p);
+    const double signedDistance = (p - colliders[c].pointAt(face, bary)).dot(colliders[c].faceNormal(face));
+    if (signedDistance < activation) {
+      contacts[v] = Contact{face, bary, 0.5 * activation};
+    } else {
+      contacts[v].budget = signedDistance - activation;
     }
+  }
+
+  void queryContacts(const Eigen::MatrixX3d& x, double activation) {
+    for (int v = 0; v < x.rows(); ++v) queryContact(v, x.row(v).transpose(), activation);
     sinceQuery = 0;
     queryNeeded = false;
+  }
+
+  /// A vertex that has used up its travel budget gets its plane looked up again, from where it was before this
+  /// iteration (outside), so a fast vertex cannot tunnel through a thin part (an arm) unseen. Vertices with a plane
+  /// look again once they have slid half the activation distance from where they found it.
+  void refreshMovedContacts(const Eigen::MatrixX3d& before, const Eigen::MatrixX3d& after, double activation) {
+    for (int v = 0; v < before.rows(); ++v) {
+      Contact& contact = contacts[v];
+      if (vertexCollider[v] < 0) continue;
+      contact.budget -= (after.row(v) - before.row(v)).norm();
+      if (contact.budget < 0) {
+        queryContact(v, before.row(v).transpose(), activation);
+        if (contacts[v].face >= 0) contacts[v].budget = 0.5 * activation;
+      }
+    }
   }
 
   void projectContacts(Eigen::MatrixX3d& x, double offset) const {
@@ -287,6 +311,7 @@ void QuasistaticSolver::moveColliders(const std::vector<Eigen::MatrixX3d>& verti
     impl_->colliders[c].mesh.V = vertices[c];
     impl_->colliders[c].tree.reset();
   }
+  impl_->queryNeeded = true;  // the parts moved towards the cloth: every vertex looks again
 }
 
 void QuasistaticSolver::setPinTargets(const Eigen::MatrixX3d& targets) {
@@ -337,7 +362,14 @@ RelaxReport QuasistaticSolver::relax(Eigen::MatrixX3d& x, int maxIterations, int
     }
     // Global step, then contacts.
     s.solver.solve(rhs, next);
-    if (!s.colliders.empty()) s.projectContacts(next, options_.contactOffset);
+    for (int v = 0; v < n; ++v) {  // no vertex moves further than maxStep in one iteration
+      const double step = (next.row(v) - x.row(v)).norm();
+      if (step > options_.maxStep) next.row(v) = x.row(v) + (options_.maxStep / step) * (next.row(v) - x.row(v));
+    }
+    if (!s.colliders.empty()) {
+      s.refreshMovedContacts(x, next, options_.contactActivation);
+      s.projectContacts(next, options_.contactOffset);
+    }
     report.residual = (next - x).rowwise().norm().maxCoeff();
     x.swap(next);
     ++s.sinceQuery;

@@ -20,10 +20,14 @@ struct QuasistaticOptions {
   double timeScale = 0.06;
   double pinStiffness = 1e4;  ///< pins follow their targets with this stiffness (N/m)
   /// Contact: a vertex closer than `contactActivation` to its collider at the last closest-point query gets a contact
-  /// plane through its closest point and is kept at least `contactOffset` outside it after every iteration.
+  /// plane through its closest point and is kept at least `contactOffset` outside it after every iteration. A vertex
+  /// further away looks again as soon as it has moved that distance (less the activation), so none tunnels through.
   double contactOffset = 0.001;
   double contactActivation = 0.02;
-  int contactQueryEvery = 4;  ///< iterations between closest-point queries (planes follow the collider in between)
+  int contactQueryEvery = 4;
+  /// No vertex moves further than this in one iteration (metres): keeps the first iterations from a badly compressed
+  /// start from throwing cloth through the body. Far above the tolerance, so it does not change the equilibrium.
+  double maxStep = 0.005;  ///< iterations between closest-point queries (planes follow the collider in between)
   /// Stopping tolerance: the largest vertex move in one iteration (metres). A move of d per iteration means an
   /// unbalanced force per unit mass of about d / h^2: 2e-5 m at h = 0.06 s is 0.0056 m/s^2, 0.06% of gravity.
   double tolerance = 2e-5;
@@ -60,8 +64,7 @@ class QuasistaticSolver {
 
   /// Colliders and, per cloth vertex, the index of the one it collides with (-1: none).
   void setColliders(std::vector<Collider> colliders, std::vector<int> vertexCollider);
-  /// Moves the colliders' vertices (same faces as before) and keeps each vertex's contact plane on the same collider
-  /// triangle, so continuation steps need no new query to start.
+  /// Moves the colliders' vertices (same faces as before); the next iteration looks up every contact again.
   void moveColliders(const std::vector<Eigen::MatrixX3d>& vertices);
   /// Targets of the pinned vertices, #pinned x 3, in the order given to the constructor.
   void setPinTargets(const Eigen::MatrixX3d& targets);

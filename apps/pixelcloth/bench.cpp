@@ -9,6 +9,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "pixelcloth/cage/body_cage.h"
+#include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/body.h"
@@ -71,6 +73,11 @@ void runBench(int repeats) {
   for (int p = 0; p < static_cast<int>(patchList.size()); ++p)
     slowest = std::max(slowest, medianSeconds(repeats * 20, [&] { fill->fillPatch(p, values, filled); }));
   emit("patches.fill_one_patch_slowest", 1e6 * slowest, "us", 50.0);
+
+  // Dressing (issue 4): the ~3K-vertex T-shirt on the ~14K-vertex mannequin, cages given.
+  const cage::Cage bodyCage = cage::bodyCage(body), shirtCage = cage::garmentCage(shirt);
+  emit("cage.dress_tshirt", 1e3 * medianSeconds(repeats, [&] { cage::dressGarment(body, bodyCage, shirt, shirtCage); }),
+       "ms", 2000.0);
 
   auto dir = std::filesystem::temp_directory_path() / ("pixelcloth-bench-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);

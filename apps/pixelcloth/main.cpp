@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerBody(app);
   pixelcloth::apps::registerGarment(app);
   pixelcloth::apps::registerCage(app);
+  pixelcloth::apps::registerDress(app);
   pixelcloth::apps::registerPose(app);
   pixelcloth::apps::registerDemo(app);
   pixelcloth::apps::registerBench(app);

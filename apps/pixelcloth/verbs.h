@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 
+#include "pixelcloth/cage/dressing.h"
+#include "pixelcloth/core/body.h"
 #include "pixelcloth/core/garment.h"
 
 namespace pixelcloth::apps {
@@ -18,8 +20,16 @@ void registerBases(CLI::App& app);
 void registerImages(CLI::App& app);
 void registerEdit(CLI::App& app);
 void registerCage(CLI::App& app);
+void registerDress(CLI::App& app);
 
 /// Writes cage.json, patches.json and cage.png of a garment into `out` (the `cage` verb's outputs; the demo's too).
 void writeCageFolder(const core::Garment& garment, const std::filesystem::path& out, int size = 512);
+
+/// Writes the `dress` verb's outputs for a garment dressed on `body` into `out`, each file atomically: dressed.obj
+/// (the relaxed positions with the garment's UVs), area_distortion.png (cage::renderAreaDistortion), dressed.png (the
+/// dressed garment on the body, three views) and dressing.json (iterations, residual, area-ratio statistics before and
+/// after relaxation, vertices pushed out and their deepest penetration, vertices still inside, vertices per part).
+void writeDressingFolder(const core::Body& body, const core::Garment& garment, const cage::Dressing& dressing,
+                         const std::filesystem::path& out);
 
 }  // namespace pixelcloth::apps

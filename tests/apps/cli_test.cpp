@@ -293,6 +293,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
        {"--image", "--out", "--shift", "--inflate", "--inflate-add", "--brush", "--blend", "--mask", "--region",
         "default"}},
       {"cage", {"--garment", "tshirt", "--out", "--size"}},
+      {"dress", {"--garment", "tshirt", "necktie", "--body", "--out"}},
   };
   for (const auto& [verb, options] : verbs) {
     SCOPED_TRACE(verb);
@@ -677,6 +678,55 @@ TEST_F(CliTest, CageWritesCurvesPatchesAndPicture) {
 TEST_F(CliTest, CageRefusesUnknownGarment) {
   fs::path out = dir("out") / "skirt";
   EXPECT_TRUE(refused(pixelcloth({"cage", "--garment", "skirt", "--out", out.string()}), {"skirt"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// dress
+
+TEST_F(CliBodyTest, DressWritesShirtOnBodyWithLessAreaDistortionAfterRelaxation) {
+  fs::path out = dir("out") / "dressed";
+  CliRun run = pixelcloth({"dress", "--garment", "tshirt", "--body", body_.string(), "--out", out.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_EQ(filesUnder(out),
+            (std::vector<std::string>{"area_distortion.png", "dressed.obj", "dressed.png", "dressing.json"}));
+  EXPECT_TRUE(isPng(out / "area_distortion.png"));
+  EXPECT_TRUE(isPng(out / "dressed.png"));
+  const core::Mesh dressed = core::readMesh(out / "dressed.obj");
+  const core::Garment shirt = core::makeTShirt();
+  EXPECT_EQ(dressed.numVertices(), shirt.mesh.numVertices());
+  EXPECT_TRUE(dressed.hasUV());
+  const nlohmann::json report = nlohmann::json::parse(readFile(out / "dressing.json"));
+  EXPECT_EQ(report.at("garment"), "tshirt");
+  EXPECT_GT(report.at("relax_iterations").get<int>(), 0);
+  EXPECT_EQ(report.at("inside_after_relaxation").get<int>(), 0);
+  const auto spread = [&](const char* key) {
+    return std::log2(report.at(key).at("p95").get<double>()) - std::log2(report.at(key).at("p5").get<double>());
+  };
+  EXPECT_LT(spread("area_ratio_after"), spread("area_ratio_before")) << report.dump(2);
+  EXPECT_NE(run.err.find(" ms"), std::string::npos) << "the verb reports how long dressing took" << run;
+  EXPECT_TRUE(noTemporaries(out));
+}
+
+TEST_F(CliTest, DressRefusesMissingBodyFolder) {
+  fs::path work = dir("work");
+  fs::path body = work / "no-such-body", out = work / "dressed";
+  EXPECT_TRUE(
+      refused(pixelcloth({"dress", "--body", body.string(), "--out", out.string()}), {body.string(), "body folder"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliBodyTest, DressRefusesBrokenBodyFolder) {
+  fs::path body = copyOfBody(), out = dir("out") / "dressed";
+  writeFile(body / "skeleton.json", "{\"joints\": [ {\"name\": \"root\", ");
+  EXPECT_TRUE(refused(pixelcloth({"dress", "--garment", "necktie", "--body", body.string(), "--out", out.string()}),
+                      {(body / "skeleton.json").string(), "JSON"}));
+  EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
+}
+
+TEST_F(CliTest, DressRefusesUnknownGarment) {
+  fs::path out = dir("out") / "dressed";
+  EXPECT_TRUE(refused(pixelcloth({"dress", "--garment", "skirt", "--out", out.string()}), {"skirt"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 

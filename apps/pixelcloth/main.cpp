@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerBases(app);
   pixelcloth::apps::registerImages(app);
   pixelcloth::apps::registerEdit(app);
+  pixelcloth::apps::registerDataset(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
 
   try {

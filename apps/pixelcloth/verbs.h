@@ -18,6 +18,7 @@ void registerBases(CLI::App& app);
 void registerImages(CLI::App& app);
 void registerEdit(CLI::App& app);
 void registerCage(CLI::App& app);
+void registerDataset(CLI::App& app);
 
 /// Writes cage.json, patches.json and cage.png of a garment into `out` (the `cage` verb's outputs; the demo's too).
 void writeCageFolder(const core::Garment& garment, const std::filesystem::path& out, int size = 512);

@@ -1,11 +1,14 @@
 // pixelcloth images: per-vertex offsets <-> whole-garment cloth images (EXR + PNG preview).
+#include <cstdio>
 #include <memory>
 
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/garment.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/npy.h"
+#include "pixelcloth/core/progress.h"
 #include "pixelcloth/patches/cloth_image.h"
+#include "pixelcloth/sim/dataset.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -19,17 +22,58 @@ struct ImagesArgs {
   int width = 0;
   int height = 0;
   int padding = 16;
+  std::string dataset;
+  std::vector<int> samples;
+  bool all = false;
 };
+
+/// Cloth images of dataset samples: cloth_NNNNNN.exr and .png per sample index.
+void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& options) {
+  using namespace pixelcloth::core;
+  PIXELCLOTH_CHECK(args.values.empty() && args.image.empty(),
+                   "images: --dataset takes the offsets from the dataset; leave out --values and --image");
+  PIXELCLOTH_CHECK(args.all != !args.samples.empty(), "images: with --dataset give --samples i,j,... or --all");
+  checkOutputFolder(args.out);
+  const sim::Dataset dataset = sim::openDataset(args.dataset);
+  const sim::DatasetSettings& settings = dataset.info.settings;
+  PIXELCLOTH_CHECK(args.garment.empty() || args.garment == settings.garment,
+                   "images: --garment " << args.garment << ", but " << args.dataset << " holds a " << settings.garment);
+  std::vector<int> indices = args.samples;
+  if (args.all)
+    for (int row = 0; row < dataset.rows(); ++row) indices.push_back(settings.first() + row);
+  for (int index : indices)
+    PIXELCLOTH_CHECK(index >= settings.first() && index < settings.end(),
+                     "images: --samples " << index << ": " << args.dataset << " holds samples " << settings.first()
+                                          << " to " << settings.end() - 1);
+  const Garment garment = sim::datasetGarment(dataset.info);
+  const patches::ClothImager imager(garment, options);
+  const std::filesystem::path folder(args.out);
+  Progress progress("images", static_cast<std::int64_t>(indices.size()));
+  for (int index : indices) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "cloth_%06d", index);
+    const patches::ClothImage image = imager.rasterize(dataset.offsetsOf(index - settings.first()));
+    patches::writeClothImage(folder / (std::string(name) + ".exr"), image);
+    writePng(folder / (std::string(name) + ".png"), patches::renderClothImage(image));
+    progress.advance();
+  }
+  progress.finish();
+  PIXELCLOTH_INFO("images: " << indices.size() << " samples of " << args.dataset << " -> " << args.out
+                             << "/cloth_NNNNNN.{exr,png}");
+}
 
 void runImages(const ImagesArgs& args) {
   using namespace pixelcloth::core;
   using namespace pixelcloth::patches;
-  PIXELCLOTH_CHECK(args.values.empty() != args.image.empty(), "images: give exactly one of --values and --image");
   ClothImageOptions options;
   options.width = args.width;
   options.height = args.height;
   options.padding = args.padding;
   options.validate();
+  if (!args.dataset.empty()) return runDatasetImages(args, options);
+  PIXELCLOTH_CHECK(!args.garment.empty(), "images: --garment is required (unless --dataset gives it)");
+  PIXELCLOTH_CHECK(args.values.empty() != args.image.empty(),
+                   "images: give exactly one of --values, --image and --dataset");
   if (!args.values.empty()) checkOutputFolder(args.out);
   Garment garment = args.garment == "tshirt" ? makeTShirt() : makeNecktie();
   ClothImager imager(garment, options);
@@ -56,14 +100,19 @@ void registerImages(CLI::App& app) {
   CLI::App* verb = app.add_subcommand(
       "images",
       "Per-vertex offsets (float32 NPY, #V x 3: du dv dn) to a cloth image (EXR + PNG preview), or a cloth image back "
-      "to per-vertex offsets");
-  verb->add_option("--garment", args->garment, "Garment template: tshirt or necktie (built with default options)")
-      ->required()
+      "to per-vertex offsets, or the samples of a dataset to cloth images");
+  verb->add_option("--garment", args->garment,
+                   "Garment template: tshirt or necktie (built with default options); required unless --dataset")
       ->check(CLI::IsMember({"tshirt", "necktie"}));
   verb->add_option("--values", args->values, "Per-vertex offsets to rasterise: float32 NPY of shape (#V, 3)");
   verb->add_option("--image", args->image, "Cloth image (EXR) to sample back to per-vertex offsets");
+  verb->add_option("--dataset", args->dataset,
+                   "Dataset folder: write cloth images of its samples (--samples or --all) from its offsets");
+  verb->add_option("--samples", args->samples, "With --dataset: sample indices, e.g. 0,5,17")->delimiter(',');
+  verb->add_flag("--all", args->all, "With --dataset: every sample of the dataset");
   verb->add_option("--out", args->out,
-                   "With --values: output folder (cloth.exr, cloth.png); with --image: output NPY file (#V, 3)")
+                   "With --values: output folder (cloth.exr, cloth.png); with --image: output NPY file (#V, 3); with "
+                   "--dataset: output folder (cloth_NNNNNN.exr and .png per sample)")
       ->required();
   verb->add_option("--width", args->width, "Image width in pixels (default 0: 256 for the T-shirt, 64 for the necktie)")
       ->check(CLI::Range(0, 8192));

@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerBases(app);
   pixelcloth::apps::registerImages(app);
   pixelcloth::apps::registerEdit(app);
+  pixelcloth::apps::registerDataset(app);
+  pixelcloth::apps::registerGenerate(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
 
   try {

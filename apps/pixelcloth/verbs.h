@@ -21,6 +21,8 @@ void registerImages(CLI::App& app);
 void registerEdit(CLI::App& app);
 void registerCage(CLI::App& app);
 void registerDress(CLI::App& app);
+void registerDataset(CLI::App& app);
+void registerGenerate(CLI::App& app);
 
 /// Writes cage.json, patches.json and cage.png of a garment into `out` (the `cage` verb's outputs; the demo's too).
 void writeCageFolder(const core::Garment& garment, const std::filesystem::path& out, int size = 512);

@@ -33,13 +33,13 @@ double largestJointAngle(const core::Pose& pose) {
 
 void SimulationOptions::validate() const {
   solver.validate();
-  PIXELCLOTH_CHECK(stepDegrees > 0 && stepDegrees <= 180, "simulation: step must be in (0, 180] degrees, got "
-                                                              << stepDegrees);
+  PIXELCLOTH_CHECK(stepDegrees > 0 && stepDegrees <= 180,
+                   "simulation: step must be in (0, 180] degrees, got " << stepDegrees);
   PIXELCLOTH_CHECK(iterationsPerStep >= 1 && finalIterations >= 1 && restIterations >= 1,
                    "simulation: iteration counts must be positive");
-  PIXELCLOTH_CHECK(minAreaRatio > 0 && minAreaRatio < 1 && maxAreaRatio > 1,
-                   "simulation: need 0 < min area ratio < 1 < max area ratio, got " << minAreaRatio << " and "
-                                                                                    << maxAreaRatio);
+  PIXELCLOTH_CHECK(
+      minAreaRatio > 0 && minAreaRatio < 1 && maxAreaRatio > 1,
+      "simulation: need 0 < min area ratio < 1 < max area ratio, got " << minAreaRatio << " and " << maxAreaRatio);
 }
 
 std::vector<int> defaultPins(const core::Garment& garment) {
@@ -51,15 +51,14 @@ std::vector<int> defaultPins(const core::Garment& garment) {
   return pins;
 }
 
-GarmentSimulator::GarmentSimulator(const core::Body& body, const core::Garment& garment,
-                                   const cage::Dressing& dressing, const SimulationOptions& options,
-                                   const Eigen::MatrixX3d* settled)
+GarmentSimulator::GarmentSimulator(const core::Body& body, const core::Garment& garment, const cage::Dressing& dressing,
+                                   const SimulationOptions& options, const Eigen::MatrixX3d* settled)
     : body_(body), garment_(garment), dressing_(dressing), options_(options) {
   options_.validate();
   const int n = garment.mesh.numVertices();
-  PIXELCLOTH_CHECK(dressing.relaxed.rows() == n && dressing.embedding.size() == n &&
-                       static_cast<int>(dressing.part.size()) == n,
-                   "simulation: the dressing has " << dressing.relaxed.rows() << " vertices, the garment " << n);
+  PIXELCLOTH_CHECK(
+      dressing.relaxed.rows() == n && dressing.embedding.size() == n && static_cast<int>(dressing.part.size()) == n,
+      "simulation: the dressing has " << dressing.relaxed.rows() << " vertices, the garment " << n);
   dressing.embedding.validate(body.mesh.numFaces(), "simulation: dressing");
   solver_ = std::make_unique<QuasistaticSolver>(garment.mesh, options_.pinned, options_.solver);
 

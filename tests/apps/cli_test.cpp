@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "../core/test_util.h"
+#include "pixelcloth/core/embedding.h"
 #include "pixelcloth/core/exr_io.h"
 #include "pixelcloth/core/garment.h"
 #include "pixelcloth/core/mesh.h"
@@ -288,12 +289,18 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
       {"demo", {"--out", "--poses", "--seed"}},
       {"bench", {"--repeats"}},
       {"bases", {"--figures", "--side", "--cells", "--amplitude", "--theta", "--ratio", "--size"}},
-      {"images", {"--garment", "--values", "--image", "--out", "--width", "--height", "--padding", "default"}},
+      {"images",
+       {"--garment", "--values", "--image", "--out", "--width", "--height", "--padding", "default", "--dataset",
+        "--samples", "--all"}},
+      {"dataset", {"info", "check", "merge", "import"}},
       {"edit",
        {"--image", "--out", "--shift", "--inflate", "--inflate-add", "--brush", "--blend", "--mask", "--region",
         "default"}},
       {"cage", {"--garment", "tshirt", "--out", "--size"}},
       {"dress", {"--garment", "tshirt", "necktie", "--body", "--out"}},
+      {"generate",
+       {"--count", "--seed", "--out", "--garment", "--shard", "--body", "--body-shape", "--corrupt-weights",
+        "--threads", "--quiet"}},
   };
   for (const auto& [verb, options] : verbs) {
     SCOPED_TRACE(verb);
@@ -841,6 +848,180 @@ TEST_F(CliTest, EditShiftWritesExrAndPreview) {
   EXPECT_TRUE(refused(pixelcloth({"edit", "--image", (work / "missing.exr").string(), "--out",
                                   (work / "x.exr").string(), "--inflate", "2"}),
                       {"missing.exr"}));
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// dataset
+
+/// A necktie sequence to import on the shared body: a dressing folder (body/, rest_positions.npy, embedding arrays),
+/// OBJ frames of the tie moved a little, and identity poses (36 numbers per row) as CSV.
+class CliDatasetTest : public CliBodyTest {
+ protected:
+  void SetUp() override {
+    CliBodyTest::SetUp();
+    if (HasFatalFailure()) return;
+    work_ = dir("work");
+    tie_ = core::makeNecktie();
+    fs::create_directories(work_ / "dressing");
+    fs::copy(body_, work_ / "dressing" / "body", fs::copy_options::recursive);
+    const core::Mesh body = core::readMesh(body_ / "body.obj");
+    const Eigen::MatrixX3d u = Eigen::RowVector3d(1, 0, 0).replicate(tie_.mesh.numVertices(), 1);
+    core::saveEmbedding(work_ / "dressing", core::embedClosest(body.V, body.F, tie_.mesh.V, u));
+    core::writeNpy(work_ / "dressing" / "rest_positions.npy", Eigen::MatrixXd(tie_.mesh.V));
+    std::string csv = "# 36 numbers per frame\n";
+    for (int i = 0; i < 3; ++i) {
+      core::Mesh frame = tie_.mesh;
+      frame.V.col(2).array() += 0.005 * i;
+      core::writeMesh(work_ / "objs" / ("tie_" + std::to_string(i) + ".obj"), frame);
+      for (int j = 0; j < 4; ++j) csv += std::string(j ? "," : "") + "1,0,0,0,1,0,0,0,1";
+      csv += "\n";
+    }
+    writeFile(work_ / "poses.csv", csv);
+  }
+  CliRun import(const fs::path& objs, const fs::path& poses, const fs::path& out) {
+    return pixelcloth({"dataset", "import", "--garment", "necktie", "--objs", objs.string(), "--poses", poses.string(),
+                       "--dressing", (work_ / "dressing").string(), "--out", out.string(), "--quiet"});
+  }
+
+  fs::path work_;
+  core::Garment tie_;
+};
+
+TEST_F(CliDatasetTest, ImportInfoCheckMergeImages) {
+  const fs::path data = work_ / "data";
+  CliRun run = import(work_ / "objs", work_ / "poses.csv", data);
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_TRUE(noTemporaries(data));
+  EXPECT_FALSE(fs::exists(data / "partial"));
+
+  run = pixelcloth({"dataset", "check", data.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_TRUE(startsWith(run.out, "ok")) << run;
+
+  run = pixelcloth({"dataset", "info", data.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  for (const char* text : {"necktie", "imported", "samples      3", "splits", "penetration", "rejected"})
+    EXPECT_NE(run.out.find(text), std::string::npos) << text << run;
+  run = pixelcloth({"dataset", "info", "--json", data.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  const nlohmann::json info = nlohmann::json::parse(run.out);
+  EXPECT_EQ(info["rows"], 3);
+  EXPECT_EQ(info["pose_size"], 36);
+  EXPECT_TRUE(info["stats"].contains("max_penetration_mm"));
+  EXPECT_EQ(info["counts"]["train"].get<int>() + info["counts"]["regularisation"].get<int>() +
+                info["counts"]["test"].get<int>(),
+            3);
+
+  run = pixelcloth({"dataset", "merge", "--out", (work_ / "merged").string(), data.string(), "--quiet"});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_EQ(readFile(work_ / "merged" / "offsets.npy"), readFile(data / "offsets.npy"));
+  EXPECT_EQ(pixelcloth({"dataset", "check", (work_ / "merged").string()}).status, 0);
+
+  run = pixelcloth({"images", "--dataset", data.string(), "--all", "--out", (work_ / "images").string(), "--quiet"});
+  ASSERT_EQ(run.status, 0) << run;
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_TRUE(isPng(work_ / "images" / ("cloth_00000" + std::to_string(i) + ".png")));
+    const core::ExrImage exr = core::readExr(work_ / "images" / ("cloth_00000" + std::to_string(i) + ".exr"));
+    EXPECT_TRUE(exr.hasChannel("du") || exr.hasChannel("tie.du"));
+  }
+  EXPECT_TRUE(
+      refused(pixelcloth({"images", "--dataset", data.string(), "--samples", "7", "--out", (work_ / "more").string()}),
+              {"--samples 7", "0 to 2"}));
+
+  // A damaged copy: check and merge refuse it, naming the file.
+  fs::copy(data, work_ / "damaged", fs::copy_options::recursive);
+  std::string bytes = readFile(data / "positions.npy");
+  bytes[bytes.size() - 5] ^= 0x40;
+  writeFile(work_ / "damaged" / "positions.npy", bytes);
+  EXPECT_TRUE(refused(pixelcloth({"dataset", "check", (work_ / "damaged").string()}), {"positions.npy", "CRC-32"}));
+  EXPECT_TRUE(
+      refused(pixelcloth({"dataset", "merge", "--out", (work_ / "merged2").string(), (work_ / "damaged").string()}),
+              {"positions.npy", "CRC-32"}));
+  EXPECT_FALSE(fs::exists(work_ / "merged2" / "manifest.json"));
+}
+
+TEST_F(CliDatasetTest, RefusesBadInputsNamingTheFile) {
+  EXPECT_TRUE(refused(pixelcloth({"dataset", "check", (work_ / "nowhere").string()}), {"nowhere", "no such"}));
+  EXPECT_TRUE(refused(pixelcloth({"dataset", "info", (work_ / "objs").string()}), {"manifest.json"}));
+  EXPECT_TRUE(refused(pixelcloth({"dataset", "merge", "--out", (work_ / "m").string(), (work_ / "nowhere").string()}),
+                      {"nowhere"}));
+
+  // An OBJ of another vertex count.
+  fs::copy(work_ / "objs", work_ / "objs_few", fs::copy_options::recursive);
+  core::Mesh few;
+  few.V = tie_.mesh.V.topRows(3);
+  few.F.resize(1, 3);
+  few.F << 0, 1, 2;
+  core::writeMesh(work_ / "objs_few" / "tie_1.obj", few);
+  EXPECT_TRUE(refused(import(work_ / "objs_few", work_ / "poses.csv", work_ / "out1"), {"tie_1.obj", "3 vertices"}));
+  EXPECT_FALSE(fs::exists(work_ / "out1"));
+
+  // A NaN coordinate in an OBJ.
+  fs::copy(work_ / "objs", work_ / "objs_nan", fs::copy_options::recursive);
+  std::string text = readFile(work_ / "objs_nan" / "tie_2.obj");
+  const size_t v = text.find("\nv ");
+  ASSERT_NE(v, std::string::npos);
+  text.replace(v, 4, "\nv nan ");
+  writeFile(work_ / "objs_nan" / "tie_2.obj", text);
+  EXPECT_TRUE(refused(import(work_ / "objs_nan", work_ / "poses.csv", work_ / "out2"), {"tie_2.obj"}));
+  EXPECT_FALSE(fs::exists(work_ / "out2"));
+
+  // A pose CSV with a wrong column count, and fewer poses than frames.
+  writeFile(work_ / "short.csv", "1,0,0,0,1,0,0,0,1\n");
+  EXPECT_TRUE(refused(import(work_ / "objs", work_ / "short.csv", work_ / "out3"),
+                      {"short.csv", "line 1", "9 columns, expected 36"}));
+  std::string two = readFile(work_ / "poses.csv");
+  two = two.substr(0, two.rfind('\n', two.size() - 2) + 1);
+  writeFile(work_ / "two.csv", two);
+  EXPECT_TRUE(refused(import(work_ / "objs", work_ / "two.csv", work_ / "out4"), {"two.csv", "2 poses for 3 OBJ"}));
+  EXPECT_FALSE(fs::exists(work_ / "out4"));
+}
+
+}  // namespace
+}  // namespace pixelcloth::apps
+
+namespace pixelcloth::apps {
+namespace {
+
+TEST_F(CliBodyTest, GenerateMakesACheckedNecktieDatasetAndResumes) {
+  const fs::path out = dir("generate_necktie");
+  const fs::path data = out / "tie";
+  const CliRun first = pixelcloth({"generate", "--garment", "necktie", "--count", "3", "--seed", "5", "--body",
+                                   body_.string(), "--out", data.string()});
+  ASSERT_EQ(first.status, 0) << first;
+  for (const char* name : {"manifest.json", "poses.npy", "positions.npy", "offsets.npy", "split.npy"})
+    EXPECT_TRUE(fs::exists(data / name)) << name;
+  const CliRun check = pixelcloth({"dataset", "check", data.string()});
+  EXPECT_EQ(check.status, 0) << check;
+  EXPECT_NE(check.out.find("ok"), std::string::npos) << check;
+  const nlohmann::json manifest = nlohmann::json::parse(readFile(data / "manifest.json"));
+  EXPECT_EQ(manifest["pose_size"], 36);
+  EXPECT_EQ(manifest["stats"]["accepted"], 3);
+  EXPECT_LE(manifest["stats"]["max_penetration_mm"].get<double>(), 2.0);
+  // The same command again finds everything done and changes nothing.
+  const std::string before = readFile(data / "positions.npy");
+  const CliRun again = pixelcloth({"generate", "--garment", "necktie", "--count", "3", "--seed", "5", "--body",
+                                   body_.string(), "--out", data.string()});
+  EXPECT_EQ(again.status, 0) << again;
+  EXPECT_NE(again.err.find("0 samples simulated (3 already done"), std::string::npos) << again;
+  EXPECT_EQ(readFile(data / "positions.npy"), before);
+}
+
+TEST_F(CliTest, GenerateRefusesBadSettings) {
+  const fs::path out = dir("generate_bad");
+  const CliRun zero = pixelcloth({"generate", "--count", "0", "--out", (out / "a").string()});
+  EXPECT_EQ(zero.status, 2) << zero;
+  EXPECT_NE(zero.err.find("--count"), std::string::npos) << zero;
+  const CliRun shard = pixelcloth({"generate", "--count", "4", "--shard", "3/2", "--out", (out / "b").string()});
+  EXPECT_EQ(shard.status, 2) << shard;
+  EXPECT_NE(shard.err.find("3/2"), std::string::npos) << shard;
+  const CliRun garment = pixelcloth({"generate", "--count", "4", "--garment", "skirt", "--out", (out / "c").string()});
+  EXPECT_EQ(garment.status, 2) << garment;
+  EXPECT_NE(garment.err.find("skirt"), std::string::npos) << garment;
+  const CliRun body =
+      pixelcloth({"generate", "--count", "4", "--body", (out / "nowhere").string(), "--out", (out / "d").string()});
+  EXPECT_EQ(body.status, 2) << body;
+  EXPECT_NE(body.err.find("nowhere"), std::string::npos) << body;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <filesystem>
 #include <string>
 
 #include "pixelcloth/core/mesh.h"
@@ -39,5 +40,13 @@ EmbeddedFrames embeddedFrames(const Eigen::MatrixX3d& bodyV, const Eigen::Matrix
 Eigen::MatrixX3d offsetsFromPositions(const EmbeddedFrames& frames, const Eigen::MatrixX3d& positions);
 /// World positions o + du t + dv b + dn n. #C x 3. Exact inverse of offsetsFromPositions (orthonormal frames).
 Eigen::MatrixX3d positionsFromOffsets(const EmbeddedFrames& frames, const Eigen::MatrixX3d& offsets);
+
+/// Writes an embedding into `folder` as three arrays, each atomically: embedding_triangle.npy (#C int32),
+/// embedding_barycentric.npy (#C x 3 float64) and embedding_tangent.npy (#C x 2 float64). Validates sizes first.
+void saveEmbedding(const std::filesystem::path& folder, const Embedding& embedding);
+
+/// Reads the arrays written by saveEmbedding and checks them (shapes agree, barycentric coordinates valid; triangles
+/// below `numBodyFaces` when it is not negative). Throws `InputError` naming the file that is wrong.
+Embedding loadEmbedding(const std::filesystem::path& folder, int numBodyFaces = -1);
 
 }  // namespace pixelcloth::core

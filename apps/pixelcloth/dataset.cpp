@@ -1,0 +1,159 @@
+// pixelcloth dataset info|check|merge|import: look at, verify, merge and import dataset folders (docs/dataset.md).
+#include "pixelcloth/sim/dataset.h"
+
+#include <iostream>
+#include <memory>
+
+#include "pixelcloth/cage/body_cage.h"
+#include "pixelcloth/cage/dressing.h"
+#include "pixelcloth/cage/garment_cage.h"
+#include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/error.h"
+#include "pixelcloth/core/log.h"
+#include "verbs.h"
+
+namespace pixelcloth::apps {
+
+namespace {
+
+struct DatasetArgs {
+  std::string folder;
+  bool json = false;
+  int strongSamples = 3;
+  std::string out;
+  std::vector<std::string> shards;
+  std::string objs;
+  std::string poses;
+  std::string garment = "tshirt";
+  std::string body;
+  std::string dressing;
+  std::uint64_t seed = 0;
+};
+
+void runInfo(const DatasetArgs& args) {
+  const sim::DatasetInfo info = sim::readDatasetInfo(args.folder);
+  if (args.json) {
+    nlohmann::json summary = info.manifest;
+    summary.erase("checksums");
+    summary["folder"] = info.folder.string();
+    std::cout << summary.dump(2) << '\n';
+  } else {
+    std::cout << info.summary();
+  }
+}
+
+void runCheck(const DatasetArgs& args) {
+  sim::DatasetCheckOptions options;
+  options.strongSamples = args.strongSamples;
+  const sim::DatasetCheckReport report = sim::checkDataset(args.folder, options);
+  std::cout << "ok: " << args.folder << ": " << report.summary() << '\n';
+}
+
+void runMerge(const DatasetArgs& args) {
+  std::vector<std::filesystem::path> shards(args.shards.begin(), args.shards.end());
+  const sim::DatasetInfo info = sim::mergeDatasets(shards, args.out);
+  std::cout << "merged " << shards.size() << " shards: " << info.settings.rows() << " samples -> " << args.out << '\n';
+}
+
+void runImport(const DatasetArgs& args) {
+  using namespace pixelcloth::core;
+  const std::filesystem::path objsPath(args.objs);
+  std::error_code ec;
+  const std::vector<std::filesystem::path> objs = std::filesystem::is_directory(objsPath, ec)
+                                                      ? sim::objSequence(objsPath)
+                                                      : std::vector<std::filesystem::path>{objsPath};
+  checkOutputFolder(args.out);
+  // Fail on a bad pose file before the body and the dressing are built.
+  sim::readPoseSequence(args.poses, args.garment == "necktie" ? 36 : 90);
+  PIXELCLOTH_CHECK(args.body.empty() || args.dressing.empty(),
+                   "dataset import: --body and --dressing exclude each other: the dressing "
+                   "folder holds the body its embedding was made on");
+  const Garment garment = args.garment == "tshirt" ? makeTShirt() : makeNecktie();
+  Body body;
+  Eigen::MatrixX3d rest;
+  Embedding embedding;
+  nlohmann::json bodyDescription;
+  if (!args.dressing.empty()) {
+    const std::filesystem::path dressingFolder(args.dressing);
+    body = sim::loadDatasetBody(dressingFolder);
+    rest = sim::loadDatasetRestPositions(dressingFolder, garment.mesh.numVertices());
+    embedding = sim::loadDatasetEmbedding(dressingFolder, body.mesh.numFaces());
+    PIXELCLOTH_CHECK(embedding.size() == garment.mesh.numVertices(),
+                     args.dressing << "/embedding_triangle.npy: " << embedding.size() << " cloth pixels, the "
+                                   << garment.name << " has " << garment.mesh.numVertices());
+    bodyDescription = {{"kind", "folder"}, {"path", (dressingFolder / "body").string()}};
+  } else {
+    // Dress the garment here, on the given body folder or the built-in mannequin.
+    body = args.body.empty() ? makeMannequin() : loadBody(args.body);
+    bodyDescription = args.body.empty() ? nlohmann::json{{"kind", "mannequin"}, {"shape", 0.0}}
+                                        : nlohmann::json{{"kind", "folder"}, {"path", args.body}};
+    const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), garment, cage::garmentCage(garment));
+    rest = dressing.relaxed;
+    embedding = dressing.embedding;
+  }
+  sim::ImportOptions options;
+  options.body = bodyDescription;
+  options.seed = args.seed;
+  const sim::DatasetSettings settings =
+      sim::importDataset(objs, args.poses, body, garment, rest, embedding, args.out, options);
+  std::cout << "imported " << settings.count << " frames -> " << args.out << '\n';
+}
+
+}  // namespace
+
+void registerDataset(CLI::App& app) {
+  auto args = std::make_shared<DatasetArgs>();
+  CLI::App* verb = app.add_subcommand(
+      "dataset", "Dataset folders (manifest.json + poses/positions/offsets/split .npy): info, check, merge, import");
+  verb->require_subcommand(1);
+
+  CLI::App* info = verb->add_subcommand("info",
+                                        "Print a readable summary of a dataset: garment, body, samples, "
+                                        "splits, solver statistics, rejections");
+  info->add_option("folder", args->folder, "Dataset folder")->required();
+  info->add_flag("--json", args->json, "Print the manifest (without checksums) as JSON instead");
+  info->callback([args] { runInfo(*args); });
+
+  CLI::App* check = verb->add_subcommand(
+      "check",
+      "Verify a dataset: manifest, checksums (CRC-32), shapes, finite values, splits, and offsets recomputed "
+      "from positions for a few samples. Prints 'ok' or fails with exit code 2 and the reason");
+  check->add_option("folder", args->folder, "Dataset folder")->required();
+  check->add_option("--strong", args->strongSamples, "Samples whose offsets are recomputed from positions")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000));
+  check->callback([args] { runCheck(*args); });
+
+  CLI::App* merge = verb->add_subcommand(
+      "merge", "Merge the shard folders of one dataset (pixelcloth generate --shard K/N) into one, in index order");
+  merge->add_option("--out", args->out, "Output folder (new or empty)")->required();
+  merge->add_option("shards", args->shards, "Shard folders, all of them, in any order")->required();
+  merge->callback([args] { runMerge(*args); });
+
+  CLI::App* import = verb->add_subcommand(
+      "import",
+      "Import garment shapes from another simulator or capture: an OBJ sequence (same vertices and faces "
+      "as the garment template) with one pose per frame");
+  import->add_option("--objs", args->objs, "Folder of OBJ files (natural name order), or one OBJ file")->required();
+  import
+      ->add_option("--poses", args->poses,
+                   "Poses, one per OBJ: JSON (list of pose objects or of 90-number arrays) or CSV (one row of 90, "
+                   "or 36 for the necktie, numbers per frame; optional header)")
+      ->required();
+  import->add_option("--garment", args->garment, "Garment template: tshirt or necktie")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"tshirt", "necktie"}));
+  import->add_option("--body", args->body,
+                     "Body folder (pixelcloth body --out) to dress the garment on (default: the built-in mannequin)");
+  import->add_option("--dressing", args->dressing,
+                     "Folder with body/, rest_positions.npy and embedding_*.npy (e.g. a generated dataset): import "
+                     "with that body and dressing");
+  import->add_option("--seed", args->seed, "Seed of the train / regularisation / test split")->capture_default_str();
+  import->add_option("--out", args->out, "Output dataset folder")->required();
+  import->callback([args] { runImport(*args);
+});
+
+for (CLI::App* sub : verb->get_subcommands({})) sub->fallthrough();
+}  // namespace pixelcloth::apps
+
+}  // namespace pixelcloth::apps

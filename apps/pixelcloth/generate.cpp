@@ -1,0 +1,50 @@
+// pixelcloth generate: simulate a dataset of (pose, garment shape) samples, resumable and shardable.
+#include "pixelcloth/sim/generate.h"
+
+#include <memory>
+
+#include "pixelcloth/core/log.h"
+#include "verbs.h"
+
+namespace pixelcloth::apps {
+
+namespace {
+struct GenerateArgs {
+  sim::GenerateOptions options;
+  std::string out;
+};
+
+void runGenerate(GenerateArgs args) {
+  if (args.options.quiet) core::setLogLevel(core::LogLevel::Quiet);
+  const sim::GenerateReport report = sim::generateDataset(args.out, args.options);
+  PIXELCLOTH_INFO("generate: " << report.added << " samples simulated (" << report.resumed << " already done, "
+                               << report.rejected << " simulations rejected) in " << report.seconds << " s -> "
+                               << args.out << "/{manifest.json, poses.npy, positions.npy, offsets.npy, split.npy}");
+}
+}  // namespace
+
+void registerGenerate(CLI::App& app) {
+  auto args = std::make_shared<GenerateArgs>();
+  sim::GenerateOptions& o = args->options;
+  CLI::App* verb = app.add_subcommand(
+      "generate", "Simulate a dataset: random poses (the paper's sampler), quasistatic drape, offsets; resumable");
+  verb->add_option("--count", o.count, "Samples in the whole dataset (all shards)")->required();
+  verb->add_option("--seed", o.seed, "Seed of poses and splits")->capture_default_str();
+  verb->add_option("--out", args->out, "Dataset folder (created, or resumed when it holds a partial run)")->required();
+  verb->add_option("--garment", o.garment, "tshirt or necktie")->capture_default_str();
+  verb->add_option("--shard", o.shard, "K/N: make only the K-th of N contiguous slices (merge with 'dataset merge')")
+      ->capture_default_str();
+  verb->add_option("--body", o.bodyFolder, "Body folder from 'pixelcloth body' (default: the built-in mannequin)");
+  verb->add_option("--body-shape", o.bodyShape, "Mannequin girth in [-1, 2] (thinner .. thicker)")
+      ->capture_default_str();
+  verb->add_option("--corrupt-weights", o.corruptWeights,
+                   "Skinning artifacts: move upper-arm weight to the torso ('torso') or torso and forearm "
+                   "('torso+arm')");
+  verb->add_option("--corrupt-fraction", o.corruptFraction, "Fraction of upper-arm weight moved")
+      ->capture_default_str();
+  verb->add_option("--threads", o.threads, "Worker threads (0: one per core)")->capture_default_str();
+  verb->add_flag("--quiet", o.quiet, "No progress on stderr");
+  verb->callback([args] { runGenerate(*args); });
+}
+
+}  // namespace pixelcloth::apps

@@ -1,0 +1,51 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "pixelcloth/core/body.h"
+#include "pixelcloth/core/skeleton.h"
+#include "pixelcloth/sim/garment_sim.h"
+
+namespace pixelcloth::sim {
+
+/// Settings of `pixelcloth generate` (issue 4, "Datasets").
+struct GenerateOptions {
+  std::string garment = "tshirt";  ///< "tshirt" | "necktie"
+  int count = 0;                   ///< N: samples in the whole dataset
+  std::uint64_t seed = 0;
+  std::string shard = "0/1";         ///< "K/N": this job's slice of [0, count)
+  std::filesystem::path bodyFolder;  ///< a body folder (`pixelcloth body`); empty: the built-in mannequin
+  double bodyShape = 0;              ///< mannequin girth in [-1, 2] (ignored with a body folder)
+  std::string corruptWeights;        ///< "", "torso" or "torso+arm" (core::corruptUpperArmWeights)
+  double corruptFraction = 0.5;
+  int threads = 0;                ///< worker threads; 0: one per core
+  int maxAttempts = 50;           ///< draws per sample before giving up (InputError)
+  double mannequinEdge = 0.0075;  ///< mannequin triangle size (tests use coarser bodies)
+  SimulationOptions simulation;
+  bool quiet = false;
+  void validate() const;
+};
+
+/// The pose drawn for sample `index` at its `attempt`-th try: a PoseSampler seeded from (seed, index, attempt), so a
+/// sample's pose does not depend on which shard or thread makes it. For the necktie only the centre line moves.
+/// Sets `pruned` to the number of draws the sampler discarded (arm inside the torso) before this one.
+core::Pose samplePose(const core::Body& body, const std::string& garment, std::uint64_t seed, int index, int attempt,
+                      int* pruned = nullptr);
+
+/// What a generate run did.
+struct GenerateReport {
+  int added = 0;    ///< samples simulated and added in this run
+  int resumed = 0;  ///< samples found done from an earlier run
+  int rejected = 0;
+  double seconds = 0;
+};
+
+/// Makes (or resumes) a dataset folder: builds or loads the body, builds the garment, dresses it, settles it, then
+/// simulates every pending sample of the shard on `threads` threads, each pose drawn by `samplePose` and redrawn
+/// (next attempt) while the simulation rejects it; progress with rate and ETA on stderr unless quiet. Ends with the
+/// finished folder (sim/dataset.h, docs/dataset.md).
+GenerateReport generateDataset(const std::filesystem::path& out, const GenerateOptions& options);
+
+}  // namespace pixelcloth::sim

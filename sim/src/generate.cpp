@@ -1,0 +1,187 @@
+#include "pixelcloth/sim/generate.h"
+
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "pixelcloth/cage/body_cage.h"
+#include "pixelcloth/cage/dressing.h"
+#include "pixelcloth/cage/garment_cage.h"
+#include "pixelcloth/core/error.h"
+#include "pixelcloth/core/log.h"
+#include "pixelcloth/core/progress.h"
+#include "pixelcloth/sim/dataset.h"
+#include "pixelcloth/sim/pose_sampler.h"
+
+namespace pixelcloth::sim {
+
+namespace {
+
+/// SplitMix64 finaliser: spreads (seed, index, attempt) into independent sampler seeds.
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+core::Body makeBody(const GenerateOptions& options, nlohmann::json& description) {
+  core::Body body;
+  if (!options.bodyFolder.empty()) {
+    body = core::loadBody(options.bodyFolder);
+    description = {{"kind", "folder"}, {"folder", options.bodyFolder.string()}};
+  } else {
+    core::MannequinOptions mannequin;
+    mannequin.shape = options.bodyShape;
+    mannequin.edgeLength = options.mannequinEdge;
+    body = core::makeMannequin(mannequin);
+    description = {{"kind", "mannequin"}, {"shape", options.bodyShape}, {"edge_length", options.mannequinEdge}};
+  }
+  if (!options.corruptWeights.empty()) {
+    body.weights =
+        core::corruptUpperArmWeights(body.skeleton, body.weights, options.corruptWeights, options.corruptFraction);
+    description["corrupt_weights"] = {{"mode", options.corruptWeights}, {"fraction", options.corruptFraction}};
+  }
+  return body;
+}
+
+nlohmann::json simulationSettings(const SimulationOptions& s) {
+  const QuasistaticOptions& q = s.solver;
+  return {{"solver", "projective dynamics, proximal, pattern rest shape"},
+          {"stretch_stiffness_n_per_m", q.stretchStiffness},
+          {"bend_stiffness_n_m", q.bendStiffness},
+          {"density_kg_per_m2", q.density},
+          {"gravity", q.gravity},
+          {"time_scale_s", q.timeScale},
+          {"contact_offset_m", q.contactOffset},
+          {"tolerance_m", q.tolerance},
+          {"step_degrees", s.stepDegrees},
+          {"iterations_per_step", s.iterationsPerStep},
+          {"final_iterations", s.finalIterations},
+          {"min_area_ratio", s.minAreaRatio},
+          {"max_area_ratio", s.maxAreaRatio},
+          {"pinned_vertices", s.pinned.size()},
+          {"pose_sampler", "appendix: half-normal centre line, azimuth / sine-altitude / twist arms, pruned"}};
+}
+
+}  // namespace
+
+void GenerateOptions::validate() const {
+  PIXELCLOTH_CHECK(garment == "tshirt" || garment == "necktie",
+                   "generate: unknown garment '" << garment << "' (expected tshirt or necktie)");
+  PIXELCLOTH_CHECK(count >= 1, "generate: --count must be at least 1, got " << count);
+  PIXELCLOTH_CHECK(threads >= 0, "generate: --threads must be >= 0, got " << threads);
+  PIXELCLOTH_CHECK(maxAttempts >= 1, "generate: max attempts must be >= 1");
+  PIXELCLOTH_CHECK(corruptWeights.empty() || corruptWeights == "torso" || corruptWeights == "torso+arm",
+                   "generate: --corrupt-weights must be torso or torso+arm, got '" << corruptWeights << "'");
+  parseShard(shard);
+  simulation.validate();
+}
+
+core::Pose samplePose(const core::Body& body, const std::string& garment, std::uint64_t seed, int index, int attempt,
+                      int* pruned) {
+  PoseSamplerOptions options;
+  options.seed = mix(mix(seed) ^ mix(static_cast<std::uint64_t>(index) * 1000003ULL + attempt));
+  PoseSampler sampler(body, options);
+  core::Pose pose = sampler.next();
+  if (pruned) *pruned = sampler.stats().rejectedArmInsideTorso;
+  if (garment == "necktie")  // the necktie's pose vector is the centre line only
+    for (size_t j = 4; j < pose.rotations.size(); ++j) pose.rotations[j].setIdentity();
+  return pose;
+}
+
+GenerateReport generateDataset(const std::filesystem::path& out, const GenerateOptions& given) {
+  GenerateOptions options = given;
+  options.validate();
+  const auto start = std::chrono::steady_clock::now();
+  nlohmann::json bodyDescription;
+  const core::Body body = makeBody(options, bodyDescription);
+  const core::Garment garment = options.garment == "necktie" ? core::makeNecktie() : core::makeTShirt();
+  if (options.simulation.pinned.empty()) options.simulation.pinned = defaultPins(garment);
+
+  DatasetSettings settings;
+  settings.garment = options.garment;
+  settings.poseSize = options.garment == "necktie" ? 36 : 90;
+  settings.vertexCount = garment.mesh.numVertices();
+  settings.seed = options.seed;
+  settings.count = options.count;
+  settings.shard = parseShard(options.shard);
+  settings.body = bodyDescription;
+  settings.generator = simulationSettings(options.simulation);
+  settings.source = "simulated";
+
+  PIXELCLOTH_INFO("generate: dressing the " << options.garment << " on the body");
+  const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), garment, cage::garmentCage(garment));
+  DatasetWriter writer(out, settings, body, garment, dressing);
+  const std::vector<int> pending = writer.pending();
+  GenerateReport report;
+  report.resumed = writer.done();
+  if (!pending.empty()) {
+    const int threads = std::max(
+        1, std::min(static_cast<int>(pending.size()),
+                    options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency())));
+    PIXELCLOTH_INFO("generate: settling the garment in the rest pose");
+    GarmentSimulator first(body, garment, dressing, options.simulation);
+    PIXELCLOTH_INFO("generate: rest drape settled in " << first.restStats().iterations << " iterations ("
+                                                       << first.restStats().seconds << " s); " << pending.size()
+                                                       << " samples on " << threads << " threads");
+    std::unique_ptr<core::Progress> progress;
+    if (!options.quiet)
+      progress = std::make_unique<core::Progress>("generate " + options.garment, static_cast<int>(pending.size()));
+    std::atomic<size_t> next{0};
+    std::atomic<int> rejected{0};
+    std::mutex progressMutex;
+    std::exception_ptr failure;
+    std::mutex failureMutex;
+    auto work = [&](GarmentSimulator& simulator) {
+      try {
+        for (size_t k = next++; k < pending.size(); k = next++) {
+          const int index = pending[k];
+          bool done = false;
+          for (int attempt = 0; attempt < options.maxAttempts && !done; ++attempt) {
+            int pruned = 0;
+            const core::Pose pose = samplePose(body, options.garment, options.seed, index, attempt, &pruned);
+            for (int p = 0; p < pruned; ++p) writer.countRejection(Rejection::ArmInsideTorso);
+            const Sample sample = simulator.simulate(pose);
+            if (sample.stats.rejection != Rejection::None) {
+              writer.countRejection(sample.stats.rejection);
+              ++rejected;
+              continue;
+            }
+            writer.add(index, sample);
+            done = true;
+          }
+          PIXELCLOTH_CHECK(done, "generate: sample " << index << " was rejected " << options.maxAttempts
+                                                     << " times in a row; the garment or body is unsuitable");
+          if (progress) {
+            std::lock_guard<std::mutex> lock(progressMutex);
+            progress->advance();
+          }
+        }
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failureMutex);
+        if (!failure) failure = std::current_exception();
+        next = pending.size();
+      }
+    };
+    std::vector<std::thread> workers;
+    std::vector<std::unique_ptr<GarmentSimulator>> simulators;
+    for (int t = 1; t < threads; ++t)
+      simulators.push_back(
+          std::make_unique<GarmentSimulator>(body, garment, dressing, options.simulation, &first.restDrape()));
+    for (int t = 1; t < threads; ++t) workers.emplace_back(work, std::ref(*simulators[t - 1]));
+    work(first);
+    for (std::thread& worker : workers) worker.join();
+    if (failure) std::rethrow_exception(failure);
+    if (progress) progress->finish();
+    report.added = static_cast<int>(pending.size());
+    report.rejected = rejected;
+  }
+  writer.finish();
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace pixelcloth::sim

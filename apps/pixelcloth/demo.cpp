@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "pixelcloth/cage/body_cage.h"
+#include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/body.h"
@@ -20,6 +21,9 @@
 #include "pixelcloth/patches/cloth_image.h"
 #include "pixelcloth/patches/edit.h"
 #include "pixelcloth/patches/garment_fill.h"
+#include "pixelcloth/sim/dataset.h"
+#include "pixelcloth/sim/generate.h"
+#include "pixelcloth/sim/pose_figures.h"
 #include "pixelcloth/sim/pose_sampler.h"
 #include "verbs.h"
 
@@ -279,6 +283,85 @@ void runDemo(const DemoArgs& args) {
           "Below: the same image edited with a dn brush on the chest and a shift in du. EXR files in "
           "images/.",
           {"images/filled_and_edited.png"});
+
+  steps.run("dressing: T-shirt and necktie on the mannequin", [&] {
+    for (const Garment& garment : {makeTShirt(), makeNecktie()}) {
+      const cage::Dressing dressing =
+          cage::dressGarment(body, cage::bodyCage(body), garment, cage::garmentCage(garment));
+      writeDressingFolder(body, garment, dressing, out / "dressing" / garment.name);
+      report["dressing"][garment.name] = dressing.summary();
+    }
+  });
+  section("Dressing",
+          "The T-shirt's cage morphed onto the body cage, the rest carried by a Poisson solve, pushed out of the "
+          "body and relaxed by edge-length equalisation on it: " +
+              report["dressing"]["tshirt"].get<std::string>() +
+              ". Area distortion in pattern space before and after relaxation (red stretch, blue compression), "
+              "and the dressed shirt. The necktie keeps its rest placement.",
+          {"dressing/tshirt/area_distortion.png", "dressing/tshirt/dressed.png"});
+
+  steps.run("datasets: simulated necktie samples, checked; contact sheet", [&] {
+    sim::GenerateOptions generate;
+    generate.garment = "necktie";
+    generate.count = 6;
+    generate.seed = args.seed;
+    generate.bodyFolder = out / "body";
+    const sim::GenerateReport made = sim::generateDataset(out / "dataset_necktie", generate);
+    const sim::DatasetCheckReport checked = sim::checkDataset(out / "dataset_necktie");
+    const sim::Dataset dataset = sim::openDataset(out / "dataset_necktie");
+    const Garment tie = makeNecktie();
+    patches::ClothImager imager(tie);
+    patches::PreviewOptions preview;
+    preview.range = 0.05f;
+    std::vector<RgbImage> row;
+    for (int r = 0; r < std::min(3, dataset.rows()); ++r) {
+      Eigen::VectorXf pose90 = Eigen::VectorXf::Zero(90);
+      pose90.head(36) = dataset.pose(r);
+      for (int j = 4; j < 10; ++j) pose90.segment(9 * j, 9) << 1, 0, 0, 0, 1, 0, 0, 0, 1;
+      const Pose pose = Pose::fromVector(pose90, "demo pose");
+      Body posed = body;
+      posed.mesh = body.posedMesh(pose);
+      Garment draped = tie;
+      draped.mesh.V = dataset.positionsOf(r).cast<double>();
+      View view;
+      view.width = view.height = 360;
+      row.push_back(renderPosedBody(body, pose, view));
+      row.push_back(renderGarmentOnBody(draped, &posed, 360));
+      row.push_back(patches::renderClothImage(imager.rasterize(dataset.offsetsOf(r)), preview));
+    }
+    writePng(out / "dataset_necktie" / "contact_sheet.png", contactSheet(row, 3));
+    report["dataset_necktie"] = {{"samples", dataset.rows()},
+                                 {"seconds", made.seconds},
+                                 {"check", checked.summary()},
+                                 {"stats", dataset.info.stats.toJson()}};
+  });
+  section("Simulated necktie dataset",
+          "pixelcloth generate --garment necktie: poses from the appendix sampler (centre line only), quasistatic "
+          "drape with the knot held at the collar; checked by dataset check (" +
+              report["dataset_necktie"]["check"].get<std::string>() +
+              "). Each row: posed body, simulated necktie, its cloth image (du dv dn).",
+          {"dataset_necktie/contact_sheet.png"});
+
+  steps.run("pose sampling: 200 draws, joint-angle histograms before and after pruning", [&] {
+    sim::PoseSamplerOptions options;
+    options.seed = args.seed;
+    sim::PoseSampler raw(body, options), pruned(body, options);
+    std::vector<Pose> before, after;
+    for (int k = 0; k < 200; ++k) before.push_back(raw.draw());
+    after = pruned.sample(200);
+    writePng(out / "poses" / "joint_histograms.png", sim::renderJointHistograms(before, after));
+    const int rejected = pruned.stats().rejectedArmInsideTorso;
+    report["pose_sampling"] = {{"kept", 200},
+                               {"rejected_arm_inside_torso", rejected},
+                               {"rejection_rate", static_cast<double>(rejected) / (200 + rejected)}};
+  });
+  section("Pose sampling",
+          "200 poses from the appendix sampler before pruning (grey) and 200 kept after pruning arms inside the "
+          "torso (blue); " +
+              std::to_string(report["pose_sampling"]["rejected_arm_inside_torso"].get<int>()) +
+              " draws were pruned to keep 200. (The T-shirt simulation's own rejections are not in this figure "
+              "yet: see the issue notes.)",
+          {"poses/joint_histograms.png"});
 
   report["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   writeJson(out / "report.json", report);

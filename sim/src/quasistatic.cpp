@@ -82,12 +82,17 @@ struct Contact {
 /// once (about 2x faster for cloth-sized systems).
 class ThreeColumnCholesky {
  public:
+  /// Factors A; later calls with the same sparsity pattern reuse the ordering and symbolic analysis.
   bool compute(const Eigen::SparseMatrix<double>& A) {
-    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(A);
-    if (llt.info() != Eigen::Success) return false;
-    L_ = llt.matrixL();
+    if (!analysed_) {
+      llt_.analyzePattern(A);
+      analysed_ = true;
+    }
+    llt_.factorize(A);
+    if (llt_.info() != Eigen::Success) return false;
+    L_ = llt_.matrixL();
     L_.makeCompressed();
-    permutation_ = llt.permutationP().indices();
+    permutation_ = llt_.permutationP().indices();
     work_.resize(A.rows(), 3);
     return true;
   }
@@ -121,6 +126,8 @@ class ThreeColumnCholesky {
   }
 
  private:
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt_;
+  bool analysed_ = false;
   Eigen::SparseMatrix<double> L_;
   Eigen::VectorXi permutation_;
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> work_;
@@ -155,6 +162,8 @@ struct QuasistaticSolver::Impl {
   Eigen::MatrixX3d pinTargets;
   Eigen::SparseMatrix<double> bending;  ///< k_b Q
   ThreeColumnCholesky solver;
+  Eigen::SparseMatrix<double> system;  ///< without contacts (every diagonal entry stored, so contacts keep the pattern)
+  Eigen::VectorXd contactWeight;       ///< per vertex: the contact stiffness in the factored system, or 0
   std::vector<ColliderState> colliders;
   std::vector<int> vertexCollider;
   std::vector<Contact> contacts;
@@ -194,6 +203,40 @@ struct QuasistaticSolver::Impl {
         queryContact(v, before.row(v).transpose(), activation);
         if (contacts[v].face >= 0) contacts[v].budget = 0.5 * activation;
       }
+    }
+  }
+
+  /// Contacts enter the global step as stiff springs towards the contact plane (refactoring when the set of vertices
+  /// in contact changes), so the solve sees the body's support instead of only having it restored afterwards.
+  void updateContactWeights(double stiffness) {
+    Eigen::VectorXd weight = Eigen::VectorXd::Zero(contactWeight.size());
+    for (int v = 0; v < weight.size(); ++v)
+      if (contacts[v].face >= 0) weight(v) = stiffness;
+    // Refactoring costs a few milliseconds: skip it while the contact set has changed by under 2% of the vertices
+    // (those still rely on projection, and springs left on vertices that lifted off only damp them).
+    const int changed = static_cast<int>((weight - contactWeight).cwiseAbs().cwiseSign().sum());
+    if (changed <= weight.size() / 50) return;
+    contactWeight = weight;
+    Eigen::SparseMatrix<double> A = system;
+    for (int v = 0; v < weight.size(); ++v)
+      if (weight(v) > 0) A.coeffRef(v, v) += weight(v);
+    solver.compute(A);
+  }
+
+  /// Right-hand side of the contact springs: each vertex in the factored contact set is pulled to its current
+  /// position moved onto the outside of its contact plane.
+  void addContactTargets(const Eigen::MatrixX3d& x, double offset, Eigen::MatrixX3d& rhs) const {
+    for (int v = 0; v < x.rows(); ++v) {
+      if (contactWeight(v) == 0) continue;
+      Eigen::Vector3d target = x.row(v).transpose();
+      const Contact& contact = contacts[v];
+      if (contact.face >= 0) {
+        const ColliderState& collider = colliders[vertexCollider[v]];
+        const Eigen::Vector3d n = collider.faceNormal(contact.face);
+        const double d = (target - collider.pointAt(contact.face, contact.bary)).dot(n);
+        if (d < offset) target += (offset - d) * n;
+      }
+      rhs.row(v) += contactWeight(v) * target.transpose();
     }
   }
 
@@ -274,8 +317,10 @@ QuasistaticSolver::QuasistaticSolver(const core::Mesh& cloth, const std::vector<
   diagonal.setFromTriplets(diag.begin(), diag.end());
   s.pinned = pinned;
   s.pinTargets = Eigen::MatrixX3d::Zero(static_cast<int>(pinned.size()), 3);
-  const Eigen::SparseMatrix<double> system = K + s.bending + diagonal;
-  PIXELCLOTH_CHECK(s.solver.compute(system), "solver: the cloth system could not be factored");
+  s.system = K + s.bending + diagonal;
+  s.system.makeCompressed();
+  s.contactWeight = Eigen::VectorXd::Zero(n);
+  PIXELCLOTH_CHECK(s.solver.compute(s.system), "solver: the cloth system could not be factored");
   s.contacts.assign(n, Contact{});
 }
 
@@ -334,11 +379,14 @@ RelaxReport QuasistaticSolver::relax(Eigen::MatrixX3d& x, int maxIterations, int
   Eigen::MatrixX3d rhs(n, 3), next(n, 3);
   Eigen::Matrix<double, 3, 3> corners;
   for (int it = 0; it < maxIterations; ++it) {
-    if (!s.colliders.empty() && (s.queryNeeded || s.sinceQuery >= options_.contactQueryEvery))
+    if (!s.colliders.empty() && (s.queryNeeded || s.sinceQuery >= options_.contactQueryEvery)) {
       s.queryContacts(x, options_.contactActivation);
+      s.updateContactWeights(options_.contactStiffness);
+    }
     // Local step: nearest rotation (3x2 with orthonormal columns) to each deformation gradient.
     rhs = constant;
     rhs += proximal * s.mass.asDiagonal() * x;
+    s.addContactTargets(x, options_.contactOffset, rhs);
     for (int f = 0; f < s.F.rows(); ++f) {
       for (int k = 0; k < 3; ++k) corners.row(k) = x.row(s.F(f, k));
       const Eigen::Matrix<double, 3, 2> Fd = (s.G[f] * corners).transpose();

@@ -16,15 +16,7 @@ namespace pixelcloth::sim {
 /// Settings of a garment simulation: the solver's material and tolerance, the continuation schedule and the
 /// paper's acceptance test.
 struct SimulationOptions {
-  /// The solver as garments need it: contacts act by projection after each global step, which holds cloth on the
-  /// body only when one iteration's gravity displacement g h^2 is far below the contact geometry, hence the small
-  /// time scale (g h^2 = 0.09 mm); the tolerance 2e-6 m per iteration is an unbalanced acceleration of 0.22 m/s^2.
-  QuasistaticOptions solver = [] {
-    QuasistaticOptions o;
-    o.timeScale = 0.003;
-    o.tolerance = 2e-6;
-    return o;
-  }();
+  QuasistaticOptions solver;
   double stepDegrees = 15;     ///< continuation: no joint turns by more than this between two steps
   int iterationsPerStep = 30;  ///< solver iterations per continuation step (the last step runs to convergence)
   int finalIterations = 600;   ///< at most this many iterations at the target pose

@@ -25,6 +25,10 @@ struct QuasistaticOptions {
   double contactOffset = 0.001;
   double contactActivation = 0.02;
   int contactQueryEvery = 4;
+  /// Vertices in contact are held by springs of this stiffness (N/m) in the global step, towards their current
+  /// position moved out of the body; tangentially this damps sliding (a vertex under load f creeps f / k per
+  /// iteration, a stand-in for friction) and vanishes at a fixed point.
+  double contactStiffness = 20.0;
   /// No vertex moves further than this in one iteration (metres): keeps the first iterations from a badly compressed
   /// start from throwing cloth through the body. Far above the tolerance, so it does not change the equilibrium.
   double maxStep = 0.005;  ///< iterations between closest-point queries (planes follow the collider in between)

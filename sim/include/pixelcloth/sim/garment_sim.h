@@ -17,7 +17,7 @@ namespace pixelcloth::sim {
 /// paper's acceptance test.
 struct SimulationOptions {
   QuasistaticOptions solver;
-  double stepDegrees = 15;     ///< continuation: no joint turns by more than this between two steps
+  double stepDegrees = 7.5;    ///< continuation: no joint turns by more than this between two steps
   int iterationsPerStep = 30;  ///< solver iterations per continuation step (the last step runs to convergence)
   int finalIterations = 600;   ///< at most this many iterations at the target pose
   int restIterations = 2000;   ///< at most this many to settle the dressed garment in the rest pose (once)

@@ -24,7 +24,7 @@ struct QuasistaticOptions {
   /// further away looks again as soon as it has moved that distance (less the activation), so none tunnels through.
   double contactOffset = 0.001;
   double contactActivation = 0.02;
-  int contactQueryEvery = 4;
+  int contactQueryEvery = 10;
   /// Vertices in contact are held by springs of this stiffness (N/m) in the global step, towards their current
   /// position moved out of the body; tangentially this damps sliding (a vertex under load f creeps f / k per
   /// iteration, a stand-in for friction) and vanishes at a fixed point.

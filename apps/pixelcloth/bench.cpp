@@ -21,6 +21,8 @@
 #include "pixelcloth/patches/frame.h"
 #include "pixelcloth/patches/garment_fill.h"
 #include "pixelcloth/patches/raster.h"
+#include "pixelcloth/sim/garment_sim.h"
+#include "pixelcloth/sim/generate.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -78,6 +80,19 @@ void runBench(int repeats) {
   const cage::Cage bodyCage = cage::bodyCage(body), shirtCage = cage::garmentCage(shirt);
   emit("cage.dress_tshirt", 1e3 * medianSeconds(repeats, [&] { cage::dressGarment(body, bodyCage, shirt, shirtCage); }),
        "ms", 2000.0);
+
+  // Simulation (issue 4): one sample of the T-shirt on one core, from the settled rest drape to a sampled pose (the
+  // same first poses every run), median over a few accepted or rejected samples alike. Bar 1 s, goal 0.3 s.
+  {
+    const cage::Dressing dressing = cage::dressGarment(body, bodyCage, shirt, shirtCage);
+    sim::GarmentSimulator simulator(body, shirt, dressing);
+    emit("sim.tshirt_rest_settle", simulator.restStats().seconds, "s", 10.0);
+    int index = 0;
+    emit("sim.tshirt_sample_one_core",
+         medianSeconds(std::max(1, repeats / 2),
+                       [&] { simulator.simulate(sim::samplePose(body, "tshirt", 1, index++, 0)); }),
+         "s", 0.3);
+  }
 
   auto dir = std::filesystem::temp_directory_path() / ("pixelcloth-bench-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);

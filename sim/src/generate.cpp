@@ -84,6 +84,7 @@ core::Pose samplePose(const core::Body& body, const std::string& garment, std::u
                       int* pruned) {
   PoseSamplerOptions options;
   options.seed = mix(mix(seed) ^ mix(static_cast<std::uint64_t>(index) * 1000003ULL + attempt));
+  options.prune = garment != "necktie";  // the necktie keeps only the centre line: arm pruning would not matter
   PoseSampler sampler(body, options);
   core::Pose pose = sampler.next();
   if (pruned) *pruned = sampler.stats().rejectedArmInsideTorso;

@@ -32,19 +32,6 @@ using Primitive = CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 using Hint = Tree::Point_and_primitive_id;
 
-/// Barycentric coordinates of p (assumed in the triangle's plane) in triangle (a, b, c), clamped into the triangle.
-Eigen::Vector3d barycentricOf(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                              const Eigen::Vector3d& c) {
-  const Eigen::Vector3d e1 = b - a, e2 = c - a, d = p - a;
-  const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), dp1 = d.dot(e1), dp2 = d.dot(e2);
-  const double det = d11 * d22 - d12 * d12;
-  const double v = det > 0 ? (d22 * dp1 - d12 * dp2) / det : 0.0;
-  const double w = det > 0 ? (d11 * dp2 - d12 * dp1) / det : 0.0;
-  Eigen::Vector3d bary(1.0 - v - w, v, w);
-  bary = bary.cwiseMax(0.0);
-  return bary / bary.sum();
-}
-
 /// Closest-point queries on the rest body: the point, its face, and the smooth (vertex-normal blended) normal there.
 class BodySurface {
  public:
@@ -80,8 +67,8 @@ class BodySurface {
     const int f = static_cast<int>(found.second.idx());
     Hit h;
     h.point = Eigen::Vector3d(found.first.x(), found.first.y(), found.first.z());
-    const Eigen::Vector3d bary = barycentricOf(h.point, V_.row(F_(f, 0)).transpose(), V_.row(F_(f, 1)).transpose(),
-                                               V_.row(F_(f, 2)).transpose());
+    const Eigen::Vector3d bary = core::barycentricCoordinates(
+        h.point, V_.row(F_(f, 0)).transpose(), V_.row(F_(f, 1)).transpose(), V_.row(F_(f, 2)).transpose());
     h.normal = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k) h.normal += bary[k] * normals_.row(F_(f, k)).transpose();
     if (h.normal.norm() < 1e-12) {

@@ -21,18 +21,6 @@ using SurfaceMesh = CGAL::Surface_mesh<Point>;
 using Primitive = CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
-/// Barycentric coordinates of p (assumed in the triangle's plane) in triangle (a, b, c), clamped into the triangle.
-Eigen::Vector3d barycentricOf(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                              const Eigen::Vector3d& c) {
-  Eigen::Vector3d e1 = b - a, e2 = c - a, d = p - a;
-  double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), dp1 = d.dot(e1), dp2 = d.dot(e2);
-  double det = d11 * d22 - d12 * d12;
-  double v = det > 0 ? (d22 * dp1 - d12 * dp2) / det : 0.0;
-  double w = det > 0 ? (d11 * dp2 - d12 * dp1) / det : 0.0;
-  Eigen::Vector3d bary(1.0 - v - w, v, w);
-  bary = bary.cwiseMax(0.0);
-  return bary / bary.sum();
-}
 }  // namespace
 
 void Embedding::validate(int numBodyFaces, const std::string& context) const {
@@ -78,7 +66,8 @@ Embedding embedClosest(const Eigen::MatrixX3d& bodyV, const Eigen::MatrixX3i& bo
     const int f = static_cast<int>(face.idx());
     Eigen::Vector3d a = bodyV.row(bodyF(f, 0)), b = bodyV.row(bodyF(f, 1)), c = bodyV.row(bodyF(f, 2));
     e.triangle[i] = f;
-    e.barycentric.row(i) = barycentricOf(Eigen::Vector3d(closest.x(), closest.y(), closest.z()), a, b, c).transpose();
+    e.barycentric.row(i) =
+        barycentricCoordinates(Eigen::Vector3d(closest.x(), closest.y(), closest.z()), a, b, c).transpose();
     // The u-direction projected into the triangle's plane, as a combination of its two edges.
     Eigen::Vector3d e1 = b - a, e2 = c - a, normal = e1.cross(e2).normalized();
     Eigen::Vector3d u = uDirections.row(i).transpose();

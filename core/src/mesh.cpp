@@ -52,6 +52,17 @@ void Mesh::validate(const std::string& context) const {
   }
 }
 
+Eigen::Vector3d barycentricCoordinates(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                       const Eigen::Vector3d& c) {
+  const Eigen::Vector3d e1 = b - a, e2 = c - a, d = p - a;
+  const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), dp1 = d.dot(e1), dp2 = d.dot(e2);
+  const double det = d11 * d22 - d12 * d12;
+  const double v = det > 0 ? (d22 * dp1 - d12 * dp2) / det : 0.0;
+  const double w = det > 0 ? (d11 * dp2 - d12 * dp1) / det : 0.0;
+  const Eigen::Vector3d bary = Eigen::Vector3d(1.0 - v - w, v, w).cwiseMax(0.0);
+  return bary / bary.sum();
+}
+
 Eigen::MatrixX3d faceNormals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
   Eigen::MatrixX3d N(F.rows(), 3);
   for (int f = 0; f < F.rows(); ++f) {

@@ -27,17 +27,6 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 Point toPoint(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 Eigen::Vector3d toEigen(const Point& p) { return {p.x(), p.y(), p.z()}; }
 
-/// Barycentric coordinates of `p` (on or near the triangle) in triangle (a, b, c).
-Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                            const Eigen::Vector3d& c) {
-  const Eigen::Vector3d e0 = b - a, e1 = c - a, d = p - a;
-  const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1), d20 = d.dot(e0), d21 = d.dot(e1);
-  const double den = d00 * d11 - d01 * d01;
-  if (!(std::abs(den) > 0)) return {1.0, 0.0, 0.0};
-  const double v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
-  return {1.0 - v - w, v, w};
-}
-
 /// A collider with its search structure (rebuilt lazily after the vertices move).
 struct ColliderState {
   Collider mesh;
@@ -66,7 +55,7 @@ struct ColliderState {
     const auto [point, primitive] = tree->closest_point_and_primitive(toPoint(x));
     const int f = static_cast<int>(primitive - triangles.cbegin());
     const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
-    return {f, barycentric(toEigen(point), a, b, c)};
+    return {f, core::barycentricCoordinates(toEigen(point), a, b, c)};
   }
 };
 

@@ -25,6 +25,11 @@ struct Mesh {
   void validate(const std::string& context = "mesh") const;
 };
 
+/// Barycentric coordinates of `p` (on or near the triangle's plane) in triangle (a, b, c), clamped into the
+/// triangle and renormalised; (1, 0, 0) for a degenerate triangle.
+Eigen::Vector3d barycentricCoordinates(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                       const Eigen::Vector3d& c);
+
 /// Per-face unit normals (#F x 3) and per-vertex area-weighted unit normals (#V x 3).
 Eigen::MatrixX3d faceNormals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
 Eigen::MatrixX3d vertexNormals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);

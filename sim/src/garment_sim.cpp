@@ -90,9 +90,18 @@ GarmentSimulator::GarmentSimulator(const core::Body& body, const core::Garment& 
   // Pins keep their dressed offsets from the body.
   const core::EmbeddedFrames frames = core::embeddedFrames(body.mesh.V, body.mesh.F, dressing.embedding);
   const Eigen::MatrixX3d offsets = core::offsetsFromPositions(frames, dressing.relaxed);
-  restOffsets_.resize(static_cast<int>(options_.pinned.size()), 3);
-  for (size_t k = 0; k < options_.pinned.size(); ++k)
-    restOffsets_.row(static_cast<int>(k)) = offsets.row(options_.pinned[k]);
+  const int pins = static_cast<int>(options_.pinned.size());
+  restOffsets_.resize(pins, 3);
+  pinEmbedding_.triangle.resize(pins);
+  pinEmbedding_.barycentric.resize(pins, 3);
+  pinEmbedding_.tangentCoords.resize(pins, 2);
+  for (int k = 0; k < pins; ++k) {
+    const int v = options_.pinned[k];
+    restOffsets_.row(k) = offsets.row(v);
+    pinEmbedding_.triangle(k) = dressing.embedding.triangle(v);
+    pinEmbedding_.barycentric.row(k) = dressing.embedding.barycentric.row(v);
+    pinEmbedding_.tangentCoords.row(k) = dressing.embedding.tangentCoords.row(v);
+  }
 
   // Settle the dressed garment under gravity in the rest pose; every pose starts from here.
   const auto start = std::chrono::steady_clock::now();
@@ -119,18 +128,7 @@ void GarmentSimulator::placeBody(const core::Pose& pose) {
   }
   solver_->moveColliders(placed);
   if (!options_.pinned.empty()) {
-    core::Embedding pinEmbedding;
-    const int p = static_cast<int>(options_.pinned.size());
-    pinEmbedding.triangle.resize(p);
-    pinEmbedding.barycentric.resize(p, 3);
-    pinEmbedding.tangentCoords.resize(p, 2);
-    for (int k = 0; k < p; ++k) {
-      const int v = options_.pinned[k];
-      pinEmbedding.triangle(k) = dressing_.embedding.triangle(v);
-      pinEmbedding.barycentric.row(k) = dressing_.embedding.barycentric.row(v);
-      pinEmbedding.tangentCoords.row(k) = dressing_.embedding.tangentCoords.row(v);
-    }
-    const core::EmbeddedFrames frames = core::embeddedFrames(posedBody_, body_.mesh.F, pinEmbedding);
+    const core::EmbeddedFrames frames = core::embeddedFrames(posedBody_, body_.mesh.F, pinEmbedding_);
     solver_->setPinTargets(core::positionsFromOffsets(frames, restOffsets_));
   }
 }

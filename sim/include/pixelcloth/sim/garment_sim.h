@@ -65,6 +65,7 @@ class GarmentSimulator {
   std::unique_ptr<QuasistaticSolver> solver_;
   std::vector<std::vector<int>> partVertices_;  ///< per body part, its body vertices (collider vertex order)
   Eigen::MatrixX3d restOffsets_;                ///< offsets of the pinned vertices in the rest pose
+  core::Embedding pinEmbedding_;                ///< the embedding of the pinned vertices alone
   Eigen::MatrixX3d rest_;
   Eigen::MatrixX3d posedBody_;
   SampleStats restStats_;

@@ -1,6 +1,8 @@
 // Errors, atomic writes, progress, PNG pictures and topology checks: the support every module uses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -149,4 +151,35 @@ TEST(Text, DigitsAndLettersAreDrawnWithinTheirExtent) {
   pixelcloth::core::drawText(blank, {12, 12}, "88", {0, 0, 0}, 3);
   EXPECT_EQ(blank.at(0, 0)[0], 255);
   EXPECT_THROW(pixelcloth::core::drawText(blank, {0, 0}, "1", {0, 0, 0}, 0), pixelcloth::core::InputError);
+}
+
+TEST(Mesh, ClosestPointOnTriangleBeatsDenseSampling) {
+  // Random points against random triangles: the exact closest point is never further than the best of a dense
+  // barycentric grid, and lies on the triangle (coordinates >= 0, sum 1).
+  std::srand(3);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::Vector3d a = Eigen::Vector3d::Random(), b = Eigen::Vector3d::Random(), c = Eigen::Vector3d::Random();
+    const Eigen::Vector3d p = 2 * Eigen::Vector3d::Random();
+    const Eigen::Vector3d bary = pc::closestPointOnTriangle(p, a, b, c);
+    EXPECT_GE(bary.minCoeff(), -1e-12);
+    EXPECT_NEAR(bary.sum(), 1.0, 1e-12);
+    const double exact = (p - (bary(0) * a + bary(1) * b + bary(2) * c)).norm();
+    double sampled = 1e9;
+    const int n = 60;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) {
+        const double u = double(i) / n, v = double(j) / n;
+        sampled = std::min(sampled, (p - ((1 - u - v) * a + u * b + v * c)).norm());
+      }
+    EXPECT_LE(exact, sampled + 1e-12);
+    EXPECT_GE(exact,
+              sampled - 0.06);  // every point of the triangle is within 1/60 of its longest edge (< 3.5) of the grid
+  }
+  // Each region: interior, edge, corner.
+  const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  EXPECT_TRUE(pc::closestPointOnTriangle({0.25, 0.25, 3}, a, b, c).isApprox(Eigen::Vector3d(0.5, 0.25, 0.25)));
+  EXPECT_TRUE(pc::closestPointOnTriangle({0.5, -1, 0}, a, b, c).isApprox(Eigen::Vector3d(0.5, 0.5, 0)));
+  EXPECT_TRUE(pc::closestPointOnTriangle({2, 2, 0}, a, b, c).isApprox(Eigen::Vector3d(0, 0.5, 0.5)));
+  EXPECT_TRUE(pc::closestPointOnTriangle({-1, -1, 1}, a, b, c).isApprox(Eigen::Vector3d(1, 0, 0)));
+  EXPECT_TRUE(pc::closestPointOnTriangle({3, -0.5, 0}, a, b, c).isApprox(Eigen::Vector3d(0, 1, 0)));
 }

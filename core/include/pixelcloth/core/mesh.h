@@ -30,6 +30,11 @@ struct Mesh {
 Eigen::Vector3d barycentricCoordinates(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                        const Eigen::Vector3d& c);
 
+/// Barycentric coordinates of the point of triangle (a, b, c) closest to `p` (exact, by the triangle's Voronoi
+/// regions: interior, edges, corners); a degenerate triangle gives its closest corner or edge point.
+Eigen::Vector3d closestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                       const Eigen::Vector3d& c);
+
 /// Per-face unit normals (#F x 3) and per-vertex area-weighted unit normals (#V x 3).
 Eigen::MatrixX3d faceNormals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
 Eigen::MatrixX3d vertexNormals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);

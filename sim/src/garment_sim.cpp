@@ -40,6 +40,7 @@ void SimulationOptions::validate() const {
   PIXELCLOTH_CHECK(
       minAreaRatio > 0 && minAreaRatio < 1 && maxAreaRatio > 1,
       "simulation: need 0 < min area ratio < 1 < max area ratio, got " << minAreaRatio << " and " << maxAreaRatio);
+  PIXELCLOTH_CHECK(maxPenetration > 0, "simulation: max penetration must be positive, got " << maxPenetration);
 }
 
 std::vector<int> defaultPins(const core::Garment& garment) {
@@ -108,7 +109,11 @@ GarmentSimulator::GarmentSimulator(const core::Body& body, const core::Garment& 
   placeBody(core::Pose::identity());
   rest_ = settled ? *settled : dressing.relaxed;
   PIXELCLOTH_CHECK(rest_.rows() == n, "simulation: the settled garment has " << rest_.rows() << " vertices, not " << n);
+  // Frictionless: the dressing's leftover compression relaxes instead of sticking to the body.
+  solver_->setFriction(0);
   const RelaxReport report = solver_->relax(rest_, settled ? 1 : options_.restIterations);
+  solver_->setFriction(options_.solver.friction);
+  solver_->freezeContactSprings();  // no refactoring per sample, and samples independent of each other
   restStats_ = measure(rest_);
   restStats_.iterations = report.iterations;
   restStats_.residual = report.residual;
@@ -147,6 +152,8 @@ SampleStats GarmentSimulator::measure(const Eigen::MatrixX3d& x) const {
     stats.rejection = Rejection::TriangleShrank;
   else if (stats.maxAreaRatio > options_.maxAreaRatio)
     stats.rejection = Rejection::TriangleGrew;
+  else if (stats.maxPenetration > options_.maxPenetration)
+    stats.rejection = Rejection::Penetrated;
   return stats;
 }
 
@@ -156,8 +163,14 @@ Sample GarmentSimulator::simulate(const core::Pose& pose) {
   Eigen::MatrixX3d x = rest_;
   int iterations = 0;
   RelaxReport report;
+  placeBody(core::Pose::identity());
   for (int step = 1; step <= steps && x.allFinite(); ++step) {
+    // The cloth rides with the body to the next pose (constant offsets in the embedded frames), so the solver only
+    // relaxes what skinning gets wrong instead of having the arms drag the sleeves through contact.
+    const Eigen::MatrixX3d offsets =
+        core::offsetsFromPositions(core::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), x);
     placeBody(partialPose(pose, static_cast<double>(step) / steps));
+    x = core::positionsFromOffsets(core::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), offsets);
     report = solver_->relax(x, step < steps ? options_.iterationsPerStep : options_.finalIterations);
     iterations += report.iterations;
   }

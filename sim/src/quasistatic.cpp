@@ -25,44 +25,165 @@ using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
 Point toPoint(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
-Eigen::Vector3d toEigen(const Point& p) { return {p.x(), p.y(), p.z()}; }
 
-/// A collider with its search structure (rebuilt lazily after the vertices move).
+/// The point of a collider closest to a cloth vertex, and the contact it makes there.
+struct Closest {
+  int face = -1;
+  Eigen::Vector3d bary = Eigen::Vector3d::Zero();  ///< of the closest point in `face`
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  /// Outside: the unit direction from the closest point to the vertex (smooth across edges and corners); inside
+  /// (behind the face's plane): the face normal.
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  double distance = 0;  ///< signed along `normal`: the Euclidean distance outside, the depth below the plane inside
+  double squared = 0;   ///< squared Euclidean distance (what the searches minimise)
+};
+
+/// A collider with what the contact searches need: face normals and angle-weighted vertex normals (the inside test),
+/// the faces around each vertex and across each edge (the local walk), and an AABB tree (global queries, rebuilt
+/// lazily after the vertices move).
 struct ColliderState {
   Collider mesh;
+  Eigen::MatrixX3d normals;               ///< per face
+  Eigen::MatrixX3d vertexNormals;         ///< per vertex, angle-weighted (unnormalised)
+  std::vector<int> ringStart, ringFaces;  ///< faces around vertex v: ringFaces[ringStart[v] .. ringStart[v + 1])
+  std::vector<int> across;                ///< 3 f + k: the face across the edge opposite corner k of f, or -1
+  std::vector<bool> onBoundary;           ///< per vertex: on an edge with one face (body parts are open meshes)
   std::vector<Triangle> triangles;
   std::unique_ptr<Tree> tree;
 
-  void rebuild() {
-    triangles.resize(mesh.F.rows());
+  explicit ColliderState(Collider collider) : mesh(std::move(collider)) {
+    const int nv = static_cast<int>(mesh.V.rows()), nf = static_cast<int>(mesh.F.rows());
+    ringStart.assign(nv + 1, 0);
+    for (int f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) ++ringStart[mesh.F(f, k) + 1];
+    for (int v = 0; v < nv; ++v) ringStart[v + 1] += ringStart[v];
+    ringFaces.resize(3 * nf);
+    std::vector<int> cursor(ringStart.begin(), ringStart.end() - 1);
+    for (int f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) ringFaces[cursor[mesh.F(f, k)]++] = f;
+    across.assign(3 * nf, -1);
+    onBoundary.assign(nv, false);
+    for (int f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int a = mesh.F(f, (k + 1) % 3), b = mesh.F(f, (k + 2) % 3);
+        for (int i = ringStart[a]; i < ringStart[a + 1] && across[3 * f + k] < 0; ++i) {
+          const int g = ringFaces[i];
+          if (g != f && (mesh.F(g, 0) == b || mesh.F(g, 1) == b || mesh.F(g, 2) == b)) across[3 * f + k] = g;
+        }
+        if (across[3 * f + k] < 0) onBoundary[a] = onBoundary[b] = true;
+      }
+    moved();
+  }
+
+  void moved() {
+    normals = core::faceNormals(mesh.V, mesh.F);
+    vertexNormals = Eigen::MatrixX3d::Zero(mesh.V.rows(), 3);
     for (int f = 0; f < mesh.F.rows(); ++f)
-      triangles[f] = Triangle(toPoint(mesh.V.row(mesh.F(f, 0))), toPoint(mesh.V.row(mesh.F(f, 1))),
-                              toPoint(mesh.V.row(mesh.F(f, 2))));
-    tree = std::make_unique<Tree>(triangles.cbegin(), triangles.cend());
-    tree->accelerate_distance_queries();
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d p = mesh.V.row(mesh.F(f, k)), e1 = mesh.V.row(mesh.F(f, (k + 1) % 3)).transpose() - p,
+                              e2 = mesh.V.row(mesh.F(f, (k + 2) % 3)).transpose() - p;
+        const double angle = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+        vertexNormals.row(mesh.F(f, k)) += angle * normals.row(f);
+      }
+    tree.reset();
   }
-  Eigen::Vector3d faceNormal(int f) const {
-    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
-    return (b - a).cross(c - a).normalized();
+
+  /// Closest point of face f to p, with the inside test of Baerentzen and Aanaes (2005): p is inside when it lies
+  /// behind the pseudo-normal of the closest feature (the face normal in the interior, the sum of both face normals
+  /// on an edge, the angle-weighted normal at a corner), which is exact for closed meshes. Where the closest point is
+  /// on the rim of an open part (where an arm meets the torso), p lies beyond the part's opening: outside.
+  Closest onFace(int f, const Eigen::Vector3d& p) const {
+    Closest c;
+    c.face = f;
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), d = mesh.V.row(mesh.F(f, 2));
+    c.bary = core::closestPointOnTriangle(p, a, b, d);
+    c.point = c.bary(0) * a + c.bary(1) * b + c.bary(2) * d;
+    const Eigen::Vector3d away = p - c.point;
+    c.squared = away.squaredNorm();
+    int zeros = 0, zero = -1, corner = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (c.bary(k) <= 1e-12) ++zeros, zero = k;
+      if (c.bary(k) > c.bary(corner)) corner = k;
+    }
+    Eigen::Vector3d pseudo = normals.row(f).transpose();
+    bool rim = false;
+    if (zeros == 1) {
+      const int g = across[3 * f + zero];
+      rim = g < 0;
+      if (!rim) pseudo += normals.row(g).transpose();
+    } else if (zeros == 2) {
+      rim = onBoundary[mesh.F(f, corner)];
+      pseudo = vertexNormals.row(mesh.F(f, corner)).transpose();
+    }
+    const double length = std::sqrt(c.squared);
+    const bool inside = !rim && away.dot(pseudo) < 0;
+    c.distance = inside ? -length : length;
+    if (length > 1e-12)
+      c.normal = (inside ? -away : away) / length;
+    else
+      c.normal = pseudo.normalized();
+    return c;
   }
-  Eigen::Vector3d pointAt(int f, const Eigen::Vector3d& bary) const {
-    return bary(0) * mesh.V.row(mesh.F(f, 0)).transpose() + bary(1) * mesh.V.row(mesh.F(f, 1)).transpose() +
-           bary(2) * mesh.V.row(mesh.F(f, 2)).transpose();
+
+  /// Exact closest point (AABB tree). `hint`: a face near the answer (the vertex's last closest face), whose closest
+  /// point starts the search with a small radius instead of the tree's own first guess.
+  Closest global(const Eigen::Vector3d& p, int hint = -1) {
+    if (!tree) {
+      triangles.resize(mesh.F.rows());
+      for (int f = 0; f < mesh.F.rows(); ++f)
+        triangles[f] = Triangle(toPoint(mesh.V.row(mesh.F(f, 0))), toPoint(mesh.V.row(mesh.F(f, 1))),
+                                toPoint(mesh.V.row(mesh.F(f, 2))));
+      tree = std::make_unique<Tree>(triangles.cbegin(), triangles.cend());
+      tree->accelerate_distance_queries();
+    }
+    if (hint < 0)
+      return onFace(static_cast<int>(tree->closest_point_and_primitive(toPoint(p)).second - triangles.cbegin()), p);
+    const Closest start = local(p, hint);
+    const auto found = tree->closest_point_and_primitive(
+        toPoint(p), std::make_pair(toPoint(start.point), triangles.cbegin() + start.face));
+    const int f = static_cast<int>(found.second - triangles.cbegin());
+    return f == start.face ? start : onFace(f, p);
   }
-  /// Closest face and the barycentric coordinates of the closest point on it.
-  std::pair<int, Eigen::Vector3d> closest(const Eigen::Vector3d& x) {
-    if (!tree) rebuild();
-    const auto [point, primitive] = tree->closest_point_and_primitive(toPoint(x));
-    const int f = static_cast<int>(primitive - triangles.cbegin());
-    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
-    return {f, core::barycentricCoordinates(toEigen(point), a, b, c)};
+
+  /// Closest point found by walking from face `start`: while the closest point lies on an edge or corner of the
+  /// current face, move to a face around that edge or corner that is closer. Ends at a local minimum of the distance,
+  /// which is the closest point when the vertex has moved little since `start` was its closest face (a few faces per
+  /// call instead of a tree descent).
+  Closest local(const Eigen::Vector3d& p, int start) const {
+    Closest best = onFace(start, p);
+    for (int step = 0; step < 64; ++step) {
+      int zeros = 0, zero = -1, corner = 0;
+      for (int k = 0; k < 3; ++k) {
+        if (best.bary(k) <= 1e-12) ++zeros, zero = k;
+        if (best.bary(k) > best.bary(corner)) corner = k;
+      }
+      if (zeros == 0) break;  // inside the face: a local minimum
+      Closest next = best;
+      if (zeros == 1) {  // on an edge: the face across it
+        const int g = across[3 * best.face + zero];
+        if (g >= 0) {
+          const Closest candidate = onFace(g, p);
+          if (candidate.squared < next.squared) next = candidate;
+        }
+      } else {  // at a corner: the faces around it
+        const int v = mesh.F(best.face, corner);
+        for (int i = ringStart[v]; i < ringStart[v + 1]; ++i) {
+          if (ringFaces[i] == best.face) continue;
+          const Closest candidate = onFace(ringFaces[i], p);
+          if (candidate.squared < next.squared) next = candidate;
+        }
+      }
+      if (next.face == best.face) break;
+      best = next;
+    }
+    return best;
   }
 };
 
-/// Contact plane of one cloth vertex: a collider triangle and a point in it.
+/// Contact state of one cloth vertex.
 struct Contact {
-  int face = -1;  ///< -1: inactive
-  Eigen::Vector3d bary = Eigen::Vector3d::Zero();
+  bool active = false;
+  Closest closest;    ///< the closest collider point at the last look (active: at the vertex's current position)
   double budget = 0;  ///< inactive: how far the vertex may still move before it must look again (metres)
 };
 
@@ -136,10 +257,12 @@ void QuasistaticOptions::validate() const {
   PIXELCLOTH_CHECK(
       contactOffset >= 0 && contactActivation > contactOffset,
       "solver: need 0 <= contact offset < contact activation, got " << contactOffset << " and " << contactActivation);
-  PIXELCLOTH_CHECK(contactQueryEvery >= 1, "solver: contact query interval must be >= 1");
   PIXELCLOTH_CHECK(maxStep > 0 && maxStep < contactActivation,
                    "solver: need 0 < max step < contact activation, got " << maxStep);
   PIXELCLOTH_CHECK(tolerance > 0, "solver: tolerance must be positive, got " << tolerance);
+  PIXELCLOTH_CHECK(contactRecheckEvery >= 1,
+                   "solver: contact recheck interval must be >= 1, got " << contactRecheckEvery);
+  PIXELCLOTH_CHECK(friction >= 0 && std::isfinite(friction), "solver: friction must be >= 0, got " << friction);
 }
 
 struct QuasistaticSolver::Impl {
@@ -153,91 +276,106 @@ struct QuasistaticSolver::Impl {
   ThreeColumnCholesky solver;
   Eigen::SparseMatrix<double> system;  ///< without contacts (every diagonal entry stored, so contacts keep the pattern)
   Eigen::VectorXd contactWeight;       ///< per vertex: the contact stiffness in the factored system, or 0
+  Eigen::MatrixX3d anchors;            ///< per vertex: where its contact spring pulls (the sticking point)
+  bool springsFrozen = false;          ///< keep the factored spring set (freezeContactSprings)
   std::vector<ColliderState> colliders;
   std::vector<int> vertexCollider;
   std::vector<Contact> contacts;
-  int sinceQuery = 0;
-  bool queryNeeded = true;
 
-  /// Finds the contact plane of vertex v at `p`: active when p is closer than `activation` to its collider (or
+  /// Looks up the contact of vertex v at `p` in its collider's tree: active when p is closer than `activation` (or
   /// inside); otherwise the vertex may travel its distance minus the activation before it needs another look.
   void queryContact(int v, const Eigen::Vector3d& p, double activation) {
+    const int hint = contacts[v].closest.face;
     contacts[v] = Contact{};
     const int c = vertexCollider[v];
     if (c < 0) return;
-    auto [face, bary] = colliders[c].closest(p);
-    const double signedDistance = (p - colliders[c].pointAt(face, bary)).dot(colliders[c].faceNormal(face));
-    if (signedDistance < activation) {
-      contacts[v] = Contact{face, bary, 0.5 * activation};
-    } else {
-      contacts[v].budget = signedDistance - activation;
-    }
+    contacts[v].closest = colliders[c].global(p, hint);
+    contacts[v].active = contacts[v].closest.distance < activation;
+    if (!contacts[v].active) contacts[v].budget = contacts[v].closest.distance - activation;
   }
 
   void queryContacts(const Eigen::MatrixX3d& x, double activation) {
     for (int v = 0; v < x.rows(); ++v) queryContact(v, x.row(v).transpose(), activation);
-    sinceQuery = 0;
-    queryNeeded = false;
   }
 
-  /// A vertex that has used up its travel budget gets its plane looked up again, from where it was before this
-  /// iteration (outside), so a fast vertex cannot tunnel through a thin part (an arm) unseen. Vertices with a plane
-  /// look again once they have slid half the activation distance from where they found it.
-  void refreshMovedContacts(const Eigen::MatrixX3d& before, const Eigen::MatrixX3d& after, double activation) {
-    for (int v = 0; v < before.rows(); ++v) {
+  /// After an iteration moved the cloth from `before` to `after`: active contacts follow their vertex by a local walk
+  /// from the last closest face (exact closest points every iteration, so planes never go stale where the body
+  /// curves); inactive vertices spend their travel budget and look again in the tree once it is used up. A vertex with
+  /// budget left before the iteration was at least `activation` away and moved at most the maximum step, so it is
+  /// still outside and the fresh look cannot miss a part it tunnelled through.
+  void trackContacts(const Eigen::MatrixX3d& before, const Eigen::MatrixX3d& after, double activation, bool global) {
+    for (int v = 0; v < after.rows(); ++v) {
+      const int c = vertexCollider[v];
+      if (c < 0) continue;
       Contact& contact = contacts[v];
-      if (vertexCollider[v] < 0) continue;
-      contact.budget -= (after.row(v) - before.row(v)).norm();
-      if (contact.budget < 0) {
-        queryContact(v, before.row(v).transpose(), activation);
-        if (contacts[v].face >= 0) contacts[v].budget = 0.5 * activation;
+      const Eigen::Vector3d p = after.row(v).transpose();
+      if (contact.active) {
+        contact.closest =
+            global ? colliders[c].global(p, contact.closest.face) : colliders[c].local(p, contact.closest.face);
+        if (contact.closest.distance >= activation) {
+          contact.active = false;
+          contact.budget = contact.closest.distance - activation;
+        }
+      } else {
+        contact.budget -= (after.row(v) - before.row(v)).norm();
+        if (contact.budget < 0) queryContact(v, p, activation);
       }
     }
   }
 
-  /// Contacts enter the global step as stiff springs towards the contact plane (refactoring when the set of vertices
-  /// in contact changes), so the solve sees the body's support instead of only having it restored afterwards.
-  void updateContactWeights(double stiffness) {
+  /// Contacts enter the global step as stiff springs towards their anchors, so the solve sees the body's support and
+  /// friction instead of only having them restored afterwards. The springs sit on the vertices in contact when the
+  /// system was last factored: it is refactored when the contact set has changed by more than 2% of the vertices
+  /// (those in between rely on projection alone; springs left on vertices that lifted off only damp them), and
+  /// always at the start of a `relax` call (`always`), so that a call's result does not depend on earlier calls.
+  void updateContactWeights(double stiffness, bool always) {
     Eigen::VectorXd weight = Eigen::VectorXd::Zero(contactWeight.size());
     for (int v = 0; v < weight.size(); ++v)
-      if (contacts[v].face >= 0) weight(v) = stiffness;
-    // Refactoring costs a few milliseconds: skip it while the contact set has changed by under 2% of the vertices
-    // (those still rely on projection, and springs left on vertices that lifted off only damp them).
+      if (contacts[v].active) weight(v) = stiffness;
     const int changed = static_cast<int>((weight - contactWeight).cwiseAbs().cwiseSign().sum());
-    if (changed <= weight.size() / 50) return;
+    if (springsFrozen) return;
+    if (!always && changed <= weight.size() / 50) return;
     contactWeight = weight;
     Eigen::SparseMatrix<double> A = system;
     for (int v = 0; v < weight.size(); ++v)
       if (weight(v) > 0) A.coeffRef(v, v) += weight(v);
-    solver.compute(A);
+    PIXELCLOTH_CHECK(solver.compute(A), "solver: the cloth system with contact springs could not be factored");
   }
 
-  /// Right-hand side of the contact springs: each vertex in the factored contact set is pulled to its current
-  /// position moved onto the outside of its contact plane.
-  void addContactTargets(const Eigen::MatrixX3d& x, double offset, Eigen::MatrixX3d& rhs) const {
+  /// Coulomb friction on the contact springs, after a global step moved the cloth to `x` (before projection): the
+  /// spring force k (anchor - x) splits into a normal part (the body's support, when it pushes outwards) and a
+  /// tangential part (friction). While the tangential part stays within `friction` times the normal part the anchor
+  /// stays (the vertex sticks); beyond, the anchor slides after the vertex until the cone is met; a vertex the spring
+  /// pulls towards the body is let go. Anchors of touching vertices sit `offset` outside the body; a vertex within
+  /// the activation distance but not touching is free (its anchor follows it, which only damps it).
+  void updateAnchors(const Eigen::MatrixX3d& x, double friction, double offset) {
     for (int v = 0; v < x.rows(); ++v) {
-      if (contactWeight(v) == 0) continue;
-      Eigen::Vector3d target = x.row(v).transpose();
       const Contact& contact = contacts[v];
-      if (contact.face >= 0) {
-        const ColliderState& collider = colliders[vertexCollider[v]];
-        const Eigen::Vector3d n = collider.faceNormal(contact.face);
-        const double d = (target - collider.pointAt(contact.face, contact.bary)).dot(n);
-        if (d < offset) target += (offset - d) * n;
+      if (!contact.active || contactWeight(v) == 0) continue;
+      const Eigen::Vector3d p = x.row(v).transpose(), n = contact.closest.normal;
+      if (contact.closest.distance > 1.5 * offset) {  // near the body but not touching it: free (only damped)
+        anchors.row(v) = p.transpose();
+        continue;
       }
-      rhs.row(v) += contactWeight(v) * target.transpose();
+      const Eigen::Vector3d pull = anchors.row(v).transpose() - p;
+      const double normal = pull.dot(n);
+      Eigen::Vector3d anchor = p;
+      if (normal > 0) {
+        const Eigen::Vector3d tangential = pull - normal * n;
+        const double slip = tangential.norm();
+        anchor = p + normal * n + (slip > friction * normal ? friction * normal / slip : 1.0) * tangential;
+      }
+      anchor += (offset - (anchor - contact.closest.point).dot(n)) * n;  // on the body, `offset` outside
+      anchors.row(v) = anchor.transpose();
     }
   }
 
+  /// Moves every active contact vertex at least `offset` outside its collider, along the contact normal.
   void projectContacts(Eigen::MatrixX3d& x, double offset) const {
     for (int v = 0; v < x.rows(); ++v) {
       const Contact& contact = contacts[v];
-      if (contact.face < 0) continue;
-      const ColliderState& collider = colliders[vertexCollider[v]];
-      const Eigen::Vector3d n = collider.faceNormal(contact.face);
-      const Eigen::Vector3d q = collider.pointAt(contact.face, contact.bary);
-      const double d = (x.row(v).transpose() - q).dot(n);
-      if (d < offset) x.row(v) += (offset - d) * n.transpose();
+      if (contact.active && contact.closest.distance < offset)
+        x.row(v) += (offset - contact.closest.distance) * contact.closest.normal.transpose();
     }
   }
 };
@@ -325,14 +463,9 @@ void QuasistaticSolver::setColliders(std::vector<Collider> colliders, std::vecto
     PIXELCLOTH_CHECK(c >= -1 && c < static_cast<int>(colliders.size()),
                      "solver: collider index " << c << " out of range");
   impl_->colliders.clear();
-  for (Collider& collider : colliders) {
-    ColliderState state;
-    state.mesh = std::move(collider);
-    impl_->colliders.push_back(std::move(state));
-  }
+  for (Collider& collider : colliders) impl_->colliders.emplace_back(std::move(collider));
   impl_->vertexCollider = std::move(vertexCollider);
   impl_->contacts.assign(numVertices(), Contact{});
-  impl_->queryNeeded = true;
 }
 
 void QuasistaticSolver::moveColliders(const std::vector<Eigen::MatrixX3d>& vertices) {
@@ -343,9 +476,18 @@ void QuasistaticSolver::moveColliders(const std::vector<Eigen::MatrixX3d>& verti
     PIXELCLOTH_CHECK(vertices[c].rows() == impl_->colliders[c].mesh.V.rows(),
                      "solver: collider " << c << " moved with a different vertex count");
     impl_->colliders[c].mesh.V = vertices[c];
-    impl_->colliders[c].tree.reset();
+    impl_->colliders[c].moved();
   }
-  impl_->queryNeeded = true;  // the parts moved towards the cloth: every vertex looks again
+}
+
+void QuasistaticSolver::freezeContactSprings() {
+  PIXELCLOTH_CHECK(!impl_->colliders.empty(), "solver: no colliders, so no contact springs to freeze");
+  impl_->springsFrozen = true;
+}
+
+void QuasistaticSolver::setFriction(double friction) {
+  PIXELCLOTH_CHECK(friction >= 0 && std::isfinite(friction), "solver: friction must be >= 0, got " << friction);
+  options_.friction = friction;
 }
 
 void QuasistaticSolver::setPinTargets(const Eigen::MatrixX3d& targets) {
@@ -367,15 +509,20 @@ RelaxReport QuasistaticSolver::relax(Eigen::MatrixX3d& x, int maxIterations, int
   RelaxReport report;
   Eigen::MatrixX3d rhs(n, 3), next(n, 3);
   Eigen::Matrix<double, 3, 3> corners;
+  // Every call starts from a fresh look in the trees (the colliders or the cloth may have moved since the last one)
+  // and a system factored for those contacts, with every contact sticking where its vertex is.
+  if (!s.colliders.empty()) {
+    s.queryContacts(x, options_.contactActivation);
+    s.updateContactWeights(options_.contactStiffness, true);
+  }
+  s.anchors = x;
   for (int it = 0; it < maxIterations; ++it) {
-    if (!s.colliders.empty() && (s.queryNeeded || s.sinceQuery >= options_.contactQueryEvery)) {
-      s.queryContacts(x, options_.contactActivation);
-      s.updateContactWeights(options_.contactStiffness);
-    }
-    // Local step: nearest rotation (3x2 with orthonormal columns) to each deformation gradient.
+    if (!s.colliders.empty() && it > 0) s.updateContactWeights(options_.contactStiffness, false);
+    // Local step: nearest rotation (3x2 with orthonormal columns) to each deformation gradient; contact springs pull
+    // towards their anchors.
     rhs = constant;
     rhs += proximal * s.mass.asDiagonal() * x;
-    s.addContactTargets(x, options_.contactOffset, rhs);
+    rhs += s.contactWeight.asDiagonal() * s.anchors;
     for (int f = 0; f < s.F.rows(); ++f) {
       for (int k = 0; k < 3; ++k) corners.row(k) = x.row(s.F(f, k));
       const Eigen::Matrix<double, 3, 2> Fd = (s.G[f] * corners).transpose();
@@ -404,12 +551,14 @@ RelaxReport QuasistaticSolver::relax(Eigen::MatrixX3d& x, int maxIterations, int
       if (step > options_.maxStep) next.row(v) = x.row(v) + (options_.maxStep / step) * (next.row(v) - x.row(v));
     }
     if (!s.colliders.empty()) {
-      s.refreshMovedContacts(x, next, options_.contactActivation);
+      s.trackContacts(x, next, options_.contactActivation, (it + 1) % options_.contactRecheckEvery == 0);
+      s.updateAnchors(next, options_.friction, options_.contactOffset);
       s.projectContacts(next, options_.contactOffset);
+      for (int v = 0; v < n; ++v)  // springs without a contact (lifted off) only damp: they follow their vertex
+        if (!s.contacts[v].active || s.contactWeight(v) == 0) s.anchors.row(v) = next.row(v);
     }
     report.residual = (next - x).rowwise().norm().maxCoeff();
     x.swap(next);
-    ++s.sinceQuery;
     report.iterations = it + 1;
     if (!std::isfinite(report.residual)) break;
     if (report.residual < options_.tolerance && report.iterations >= minIterations) {
@@ -426,10 +575,7 @@ Eigen::VectorXd QuasistaticSolver::penetration(const Eigen::MatrixX3d& x) const 
   for (int v = 0; v < x.rows(); ++v) {
     const int c = v < static_cast<int>(s.vertexCollider.size()) ? s.vertexCollider[v] : -1;
     if (c < 0) continue;
-    const Eigen::Vector3d p = x.row(v);
-    auto [face, bary] = s.colliders[c].closest(p);
-    const double d = (p - s.colliders[c].pointAt(face, bary)).dot(s.colliders[c].faceNormal(face));
-    depth(v) = std::max(0.0, -d);
+    depth(v) = std::max(0.0, -s.colliders[c].global(x.row(v).transpose()).distance);
   }
   return depth;
 }

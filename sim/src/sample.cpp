@@ -14,6 +14,8 @@ const char* rejectionName(Rejection rejection) {
       return "not_finite";
     case Rejection::ArmInsideTorso:
       return "arm_inside_torso";
+    case Rejection::Penetrated:
+      return "penetrated";
   }
   return "unknown";
 }

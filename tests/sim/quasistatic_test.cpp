@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -113,7 +114,9 @@ TEST(Quasistatic, SheetDrapesOverSphereWithoutPassingThrough) {
   const core::Mesh cloth = sheet(n, 0.7, radius + 0.02);
   // Without friction a sheet slides off a ball, so its centre is pinned 2 mm above the top of the sphere.
   const int centre = (n / 2) * n + n / 2;
-  QuasistaticSolver solver(cloth, {centre});
+  QuasistaticOptions frictionless;
+  frictionless.friction = 0;
+  QuasistaticSolver solver(cloth, {centre}, frictionless);
   solver.setPinTargets(Eigen::RowVector3d(0, radius + 0.002, 0));
   solver.setColliders({sphere(radius)}, std::vector<int>(n * n, 0));
   Eigen::MatrixX3d x = cloth.V;
@@ -141,6 +144,36 @@ Collider box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   b.F.resize(12, 3);
   b.F << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5;
   return b;
+}
+
+/// A square of cloth lying on a slab tilted by `degrees` about the z axis: how far its centre has moved along the
+/// slope after relaxing under gravity with friction coefficient `friction`.
+double slideOnSlope(double degrees, double friction) {
+  const int n = 11;
+  core::Mesh cloth = sheet(n, 0.2, 0.0011);
+  const Eigen::Matrix3d tilt = Eigen::AngleAxisd(degrees * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  cloth.V = (cloth.V * tilt.transpose()).eval();
+  Collider slab = box({-1, -0.1, -1}, {1, 0, 1});
+  slab.V = (slab.V * tilt.transpose()).eval();
+  QuasistaticOptions options;
+  options.friction = friction;
+  QuasistaticSolver solver(cloth, {}, options);
+  solver.setColliders({slab}, std::vector<int>(n * n, 0));
+  Eigen::MatrixX3d x = cloth.V;
+  // Sliding is slow: the contact springs let a vertex slip by (net force) / stiffness per iteration, a few microns
+  // here, below the stopping tolerance; so run a fixed number of iterations.
+  solver.relax(x, 10000, 10000);
+  EXPECT_LT(solver.penetration(x).maxCoeff(), 1e-4);
+  const Eigen::Vector3d downhill = tilt * Eigen::Vector3d(-1, 0, 0);  // the slab's surface falls towards -x
+  return (x.colwise().mean() - cloth.V.colwise().mean()).dot(downhill.transpose());
+}
+
+TEST(Quasistatic, FrictionHoldsClothOnAGentleSlopeAndNotOnASteepOne) {
+  // Coulomb: cloth sticks while tan(slope) <= friction. tan(10 deg) = 0.18 and tan(30 deg) = 0.58 against 0.3.
+  const double gentle = slideOnSlope(10, 0.3), steep = slideOnSlope(30, 0.3), slippery = slideOnSlope(10, 0.0);
+  EXPECT_LT(std::abs(gentle), 0.001) << "gentle slope with friction";
+  EXPECT_GT(steep, 0.01) << "steep slope with friction";
+  EXPECT_GT(slippery, 0.01) << "gentle slope without friction";
 }
 
 TEST(Quasistatic, CollidersMoveAndTheClothFollows) {

@@ -17,12 +17,14 @@ namespace pixelcloth::sim {
 /// paper's acceptance test.
 struct SimulationOptions {
   QuasistaticOptions solver;
-  double stepDegrees = 7.5;    ///< continuation: no joint turns by more than this between two steps
-  int iterationsPerStep = 30;  ///< solver iterations per continuation step (the last step runs to convergence)
-  int finalIterations = 600;   ///< at most this many iterations at the target pose
+  double stepDegrees = 25;     ///< continuation: no joint turns by more than this between two steps
+  int iterationsPerStep = 20;  ///< solver iterations per continuation step before the last
+  int finalIterations = 200;   ///< at most this many iterations at the target pose (fewer if converged)
   int restIterations = 2000;   ///< at most this many to settle the dressed garment in the rest pose (once)
   double minAreaRatio = 0.25;  ///< reject when a triangle keeps less than this of its pattern area (shrank > 75%)
   double maxAreaRatio = 2.0;   ///< reject when a triangle more than doubles its pattern area (grew > 100%)
+  /// Reject when a cloth vertex ends deeper than this inside its collision part (metres; the 2 mm bar).
+  double maxPenetration = 0.002;
   /// Cloth vertices held to the body: they follow their embedded point with the rest offset. Empty for the T-shirt;
   /// `defaultPins` gives the necktie's knot.
   std::vector<int> pinned;
@@ -36,8 +38,11 @@ std::vector<int> defaultPins(const core::Garment& garment);
 /// Quasistatic drape of one garment on one body for any pose (DESIGN.md "Simulation"). Built once per garment and
 /// body: the system is factored and the dressed garment settled under gravity in the rest pose; `simulate` then
 /// walks the body from the rest pose to the target pose in steps of at most `stepDegrees` per joint (rotations
-/// interpolated along their axis), relaxing the cloth at every step, and runs the last step to convergence. Each
-/// cloth vertex collides only with its primary body part (Dressing::part). Not thread-safe: one per thread.
+/// interpolated along their axis). At every step the cloth first rides with the body (each vertex keeps its offset
+/// in the frame of its embedded body point, so arms carry their sleeves instead of dragging them through contact),
+/// then relaxes; the last step relaxes longest. Friction makes the result depend on this path, as it would for a
+/// real shirt. Each cloth vertex collides only with its primary body part (Dressing::part); there is no
+/// self-collision. Not thread-safe: one per thread.
 class GarmentSimulator {
  public:
   /// `settled`: the rest drape of another simulator of the same garment, body and options (skips settling again).

@@ -19,19 +19,25 @@ struct QuasistaticOptions {
   /// step, so the iterates descend to the static equilibrium. Larger is faster and less robust.
   double timeScale = 0.06;
   double pinStiffness = 1e4;  ///< pins follow their targets with this stiffness (N/m)
-  /// Contact: a vertex closer than `contactActivation` to its collider at the last closest-point query gets a contact
-  /// plane through its closest point and is kept at least `contactOffset` outside it after every iteration. A vertex
-  /// further away looks again as soon as it has moved that distance (less the activation), so none tunnels through.
+  /// Contact: a vertex closer than `contactActivation` to its collider is in contact; its closest point is followed
+  /// every iteration by a walk over the collider's faces, and after every iteration the vertex is kept at least
+  /// `contactOffset` outside. A vertex further away looks again in the collider's AABB tree as soon as it has moved
+  /// that distance (less the activation), so none tunnels through a part.
   double contactOffset = 0.001;
   double contactActivation = 0.02;
-  int contactQueryEvery = 10;
-  /// Vertices in contact are held by springs of this stiffness (N/m) in the global step, towards their current
-  /// position moved out of the body; tangentially this damps sliding (a vertex under load f creeps f / k per
-  /// iteration, a stand-in for friction) and vanishes at a fixed point.
+  /// Every this many iterations a vertex in contact looks again in the AABB tree instead of walking: a walk ends at
+  /// the nearest local minimum of the distance and misses a second sheet of the same part closing in on the vertex
+  /// (the shoulder coming down onto the side of the torso part).
+  int contactRecheckEvery = 30;
+  /// Vertices in contact are held by springs of this stiffness (N/m) in the global step towards an anchor on the body:
+  /// the spring's normal force is the body's support, its tangential force friction.
   double contactStiffness = 20.0;
+  /// Coulomb friction coefficient of cloth on the body: a vertex in contact sticks (its anchor stays) while the
+  /// tangential spring force is at most `friction` times the normal one, and slides beyond. 0: frictionless.
+  double friction = 0.3;
   /// No vertex moves further than this in one iteration (metres): keeps the first iterations from a badly compressed
   /// start from throwing cloth through the body. Far above the tolerance, so it does not change the equilibrium.
-  double maxStep = 0.005;  ///< iterations between closest-point queries (planes follow the collider in between)
+  double maxStep = 0.005;
   /// Stopping tolerance: the largest vertex move in one iteration (metres). A move of d per iteration means an
   /// unbalanced force per unit mass of about d / h^2: 2e-5 m at h = 0.06 s is 0.0056 m/s^2, 0.06% of gravity.
   double tolerance = 2e-5;
@@ -54,10 +60,14 @@ struct RelaxReport {
 /// Static equilibrium of cloth under gravity against colliders, by projective dynamics (Bouaziz et al. 2014) with a
 /// proximal term instead of inertia: per iteration a local step (each triangle's deformation gradient projected to
 /// the nearest rotation) and a global step (one prefactored sparse Cholesky solve, three right-hand sides), followed
-/// by contact projection onto per-vertex contact planes. The rest shape of every triangle is its pattern triangle
-/// (per-corner UVs in metres), so seams sewn across pattern pieces are rest-free; bending is the quadratic isometric
-/// model (Bergou et al. 2006) with a flat rest state. The system matrix depends only on the cloth and the pins, so it
-/// is factored once and shared; colliders and pin targets change freely between calls.
+/// by contact: each vertex's exact closest point on its collider (a walk over the collider's faces, an AABB tree
+/// when far or every `contactRecheckEvery` iterations, inside test by pseudo-normals), Coulomb friction on contact
+/// springs anchored to the body, and projection out of the collider. The rest shape of every triangle is its pattern
+/// triangle (per-corner UVs in metres), so seams sewn across pattern pieces are rest-free; bending is the quadratic
+/// isometric model (Bergou et al. 2006) with a flat rest state. The system matrix is the cloth's and the pins' plus the
+/// contact springs, refactored (same sparsity, symbolic analysis reused) when the contact set changes; colliders move
+/// and pin targets change freely between calls. Only cloth-body contact is handled, not cloth-cloth (no
+/// self-collision).
 class QuasistaticSolver {
  public:
   /// `cloth`: faces F plus per-corner pattern coordinates UV / FUV (the rest shape); `pinned`: vertex indices held
@@ -70,6 +80,13 @@ class QuasistaticSolver {
   void setColliders(std::vector<Collider> colliders, std::vector<int> vertexCollider);
   /// Moves the colliders' vertices (same faces as before); the next iteration looks up every contact again.
   void moveColliders(const std::vector<Eigen::MatrixX3d>& vertices);
+  /// From now on the contact springs stay on the vertices that carry them now and the system is never refactored:
+  /// vertices that touch the body later are held by projection alone, those that lift off are only damped. Every
+  /// later call then costs no factorisation and its result cannot depend on the calls before it. For a garment
+  /// posed many times from one settled drape, freeze after settling.
+  void freezeContactSprings();
+  /// Changes the friction coefficient for the following calls (e.g. 0 to settle a garment fully before posing it).
+  void setFriction(double friction);
   /// Targets of the pinned vertices, #pinned x 3, in the order given to the constructor.
   void setPinTargets(const Eigen::MatrixX3d& targets);
 

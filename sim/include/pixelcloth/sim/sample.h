@@ -6,10 +6,11 @@
 namespace pixelcloth::sim {
 
 /// Why a drawn sample was discarded: the pose sampler pruned it (an arm inside the torso), or the simulation failed
-/// the paper's test (a triangle shrank by more than 75% or grew by more than 100%), or did not stay finite.
-enum class Rejection { None, TriangleShrank, TriangleGrew, NotFinite, ArmInsideTorso };
+/// the paper's test (a triangle shrank by more than 75% or grew by more than 100%), ended with cloth inside its body
+/// part deeper than allowed, or did not stay finite.
+enum class Rejection { None, TriangleShrank, TriangleGrew, NotFinite, ArmInsideTorso, Penetrated };
 
-/// "none", "triangle_shrank", "triangle_grew", "not_finite", "arm_inside_torso".
+/// "none", "triangle_shrank", "triangle_grew", "not_finite", "arm_inside_torso", "penetrated".
 const char* rejectionName(Rejection rejection);
 
 /// What the quasistatic solver reports for one pose.

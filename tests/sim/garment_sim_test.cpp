@@ -1,0 +1,77 @@
+// The T-shirt simulated on the mannequin: the continuation carries the sleeves with the arms, contacts keep the
+// cloth out of each vertex's body part, and a sample depends only on its pose.
+#include "pixelcloth/sim/garment_sim.h"
+
+#include <gtest/gtest.h>
+
+#include "pixelcloth/cage/body_cage.h"
+#include "pixelcloth/cage/garment_cage.h"
+
+namespace pixelcloth::sim {
+namespace {
+
+class TShirtSimulation : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    body_ = new core::Body(core::makeMannequin());
+    shirt_ = new core::Garment(core::makeTShirt());
+    dressing_ =
+        new cage::Dressing(cage::dressGarment(*body_, cage::bodyCage(*body_), *shirt_, cage::garmentCage(*shirt_)));
+    simulator_ = new GarmentSimulator(*body_, *shirt_, *dressing_);
+  }
+  static void TearDownTestSuite() {
+    delete simulator_;
+    delete dressing_;
+    delete shirt_;
+    delete body_;
+  }
+  /// Both arms lowered by `degrees` at the shoulder joints (about the body's forward axis), the spine bent forward.
+  static core::Pose armsDown(double degrees) {
+    Eigen::Matrix<double, 10, 3> euler = Eigen::Matrix<double, 10, 3>::Zero();
+    euler(1, 0) = 15;        // spine: bend forward
+    euler(5, 2) = -degrees;  // l_arm
+    euler(8, 2) = degrees;   // r_arm
+    return core::Pose::fromEulerDegrees(euler);
+  }
+  static core::Body* body_;
+  static core::Garment* shirt_;
+  static cage::Dressing* dressing_;
+  static GarmentSimulator* simulator_;
+};
+core::Body* TShirtSimulation::body_ = nullptr;
+core::Garment* TShirtSimulation::shirt_ = nullptr;
+cage::Dressing* TShirtSimulation::dressing_ = nullptr;
+GarmentSimulator* TShirtSimulation::simulator_ = nullptr;
+
+TEST_F(TShirtSimulation, RestDrapeSettlesWithoutDistortionOrPenetration) {
+  const SampleStats& rest = simulator_->restStats();
+  EXPECT_EQ(rest.rejection, Rejection::None);
+  EXPECT_LT(rest.residual, 1e-4);
+  EXPECT_LT(rest.maxPenetration, 0.002);
+  EXPECT_GT(rest.minAreaRatio, 0.7);
+  EXPECT_LT(rest.maxAreaRatio, 1.6);
+}
+
+TEST_F(TShirtSimulation, LoweredArmsCarryTheirSleevesAndASampleDependsOnlyOnItsPose) {
+  const Sample first = simulator_->simulate(armsDown(40));
+  ASSERT_TRUE(first.positions.allFinite());
+  EXPECT_EQ(first.stats.rejection, Rejection::None) << rejectionName(first.stats.rejection);
+  EXPECT_LT(first.stats.maxPenetration, 0.002);
+  EXPECT_GT(first.stats.minAreaRatio, 0.25);
+  EXPECT_LT(first.stats.maxAreaRatio, 2.0);
+  // The sleeves went down with the arms: the lowest sleeve hem vertex is well below where it hung at rest.
+  double restLowest = 1e9, posedLowest = 1e9;
+  for (int v = 0; v < shirt_->mesh.numVertices(); ++v)
+    if (body_->parts[dressing_->part[v]].name != "torso") {  // a sleeve vertex (collides with an arm)
+      restLowest = std::min(restLowest, simulator_->restDrape()(v, 1));
+      posedLowest = std::min(posedLowest, static_cast<double>(first.positions(v, 1)));
+    }
+  EXPECT_LT(posedLowest, restLowest - 0.05);
+  // Another pose in between changes nothing: the same pose gives the same shirt.
+  simulator_->simulate(armsDown(-30));
+  const Sample again = simulator_->simulate(armsDown(40));
+  EXPECT_EQ((again.positions - first.positions).cwiseAbs().maxCoeff(), 0.0f);
+}
+
+}  // namespace
+}  // namespace pixelcloth::sim

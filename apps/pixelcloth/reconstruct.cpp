@@ -76,7 +76,7 @@ struct ReconstructArgs {
   std::uint64_t seed = 0;
   int meshes = 3;
   std::string restLengths = "pattern";
-  double anisoThetaDegrees = 90, anisoRatio = 0.3;
+  double anisoThetaDegrees = 0, anisoRatio = 0.6;
   cage::SplineOptions spline;
   bool quiet = false;
 };

@@ -171,7 +171,7 @@ core::RgbImage renderPatternValues(const core::Garment& garment, const Eigen::Ve
                    "pattern picture: " << values.size() << " values for " << garment.mesh.numVertices() << " vertices");
   const int titleHeight = 24, gap = 8, layouts = garment.numLayouts();
   core::RgbImage image(layouts * size + (layouts - 1) * gap, size + titleHeight);
-  core::drawText(image, {6, 6}, title, {0, 0, 0}, 2);
+  core::drawText(image, {6, 6}, title, {0, 0, 0}, core::textExtent(title, 2).x() + 12 <= image.width ? 2 : 1);
   const double scale = maxValue > 0 ? maxValue : 1;
   for (int l = 0; l < layouts; ++l) {
     const patches::ImageFrame frame = patches::layoutFrame(garment, l, size);
@@ -333,8 +333,8 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
   std::vector<core::RgbImage> maps;
   for (int m = 0; m < M; ++m) {
     std::ostringstream title;
-    title << reconstructionMethodName(methods[m]) << "  mean " << std::fixed << std::setprecision(2)
-          << 100 * report.meanVertexError[m].mean() << " cm  scale 0-" << std::setprecision(1) << 100 * scale << " cm";
+    title << reconstructionMethodName(methods[m]) << " " << std::fixed << std::setprecision(2)
+          << 100 * report.meanVertexError[m].mean() << " cm (0-" << std::setprecision(1) << 100 * scale << ")";
     maps.push_back(renderPatternValues(garment, report.meanVertexError[m], scale, title.str()));
   }
   int width = 0, height = 0;

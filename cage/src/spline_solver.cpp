@@ -206,12 +206,12 @@ CurveSpline fitCurveSpline(const std::vector<Eigen::Vector3d>& markers, const st
       }
     }
     ceres::Solver::Options solverOptions;
-    solverOptions.linear_solver_type = ceres::DENSE_QR;
+    solverOptions.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     solverOptions.max_num_iterations = options.maxIterations;
     solverOptions.logging_type = ceres::SILENT;
     solverOptions.minimizer_progress_to_stdout = false;
     solverOptions.num_threads = 1;
-    solverOptions.function_tolerance = 1e-8;
+    solverOptions.function_tolerance = 1e-6;
     solverOptions.parameter_tolerance = 1e-10;
     ceres::Solver::Summary result;
     ceres::Solve(solverOptions, &problem, &result);

@@ -199,6 +199,25 @@ TEST(SplineResiduals, EachMatchesNumericDifferentiation) {
   expectAutodiffMatchesNumeric<pcg::MarkerFitResidual, 3, 3>(fit, {{0.11, 1.09, 0.003}});
 }
 
+TEST(SplineResiduals, BendingIsTheExactIntegralOfTheSquaredSecondDerivative) {
+  // A reference integral by a fine midpoint rule against the 2-point Gauss-Legendre residuals.
+  const double p0[3] = {0.1, 1.2, -0.05}, d0[3] = {0.8, 0.3, -0.4}, p1[3] = {0.22, 1.25, 0.02},
+               d1[3] = {0.6, -0.2, 0.7};
+  const double L = 0.13;
+  double reference = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    double a[3];
+    pcg::detail::hermiteAcceleration(p0, d0, p1, d1, L, (i + 0.5) / n, a);
+    reference += (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) / (L * L) / n;
+  }
+  double r[pcg::BendingResidual::kResiduals];
+  pcg::BendingResidual{L, 1.0}(p0, d0, p1, d1, r);
+  double sum = 0;
+  for (double v : r) sum += v * v;
+  EXPECT_NEAR(sum, reference, 1e-6 * reference);
+}
+
 TEST(SplineResiduals, ArcLengthOfAStraightSegmentIsItsChord) {
   const double p0[3] = {0, 0, 0}, p1[3] = {0.3, 0.4, 0}, d[3] = {0.6, 0.8, 0};
   EXPECT_NEAR(pcg::hermiteArcLength(p0, d, p1, d, 0.5), 0.5, 1e-12);

@@ -23,6 +23,14 @@ struct GaussLegendre5 {
                                                0.23931433524968324, 0.11846344252809454};
 };
 
+/// 2-point Gauss-Legendre on [0, 1]: exact for polynomials up to degree 3, so for the squared second derivative of a
+/// cubic (degree 2).
+struct GaussLegendre2 {
+  static constexpr int kPoints = 2;
+  static constexpr double kNodes[kPoints] = {0.21132486540518711, 0.78867513459481289};
+  static constexpr double kWeights[kPoints] = {0.5, 0.5};
+};
+
 namespace detail {
 /// dx/dt of the Hermite segment at t (3 values into `out`).
 template <typename T>
@@ -69,22 +77,22 @@ struct SegmentLengthResidual {
   bool stretch = false;
 };
 
-/// 3 x 5 residuals: sqrt(weight w_g) x''(t_g) / L at the Gauss-Legendre nodes, so that the squared sum approximates
-/// weight times the integral of (curvature x L)^2 over the segment (exact curvature when |dx/dt| = L): a scale-free
-/// bending energy that keeps the tangents, which the lengths alone leave free, smooth.
+/// 3 x 2 residuals: sqrt(weight w_g) x''(t_g) / L at the 2 Gauss-Legendre nodes, so that the squared sum is weight
+/// times the integral over t of |x''|^2 / L^2, exactly (x'' is linear in t): the integral of (curvature x L)^2 over
+/// the segment when |dx/dt| = L. A scale-free bending energy that keeps the tangents, which the lengths alone leave
+/// free, smooth.
 struct BendingResidual {
   template <typename T>
   bool operator()(const T* const p0, const T* const d0, const T* const p1, const T* const d1, T* residual) const {
-    using std::sqrt;
-    for (int g = 0; g < GaussLegendre5::kPoints; ++g) {
+    for (int g = 0; g < GaussLegendre2::kPoints; ++g) {
       T a[3];
-      detail::hermiteAcceleration(p0, d0, p1, d1, restLength, GaussLegendre5::kNodes[g], a);
-      const double scale = std::sqrt(weight * GaussLegendre5::kWeights[g]) / restLength;
+      detail::hermiteAcceleration(p0, d0, p1, d1, restLength, GaussLegendre2::kNodes[g], a);
+      const double scale = std::sqrt(weight * GaussLegendre2::kWeights[g]) / restLength;
       for (int k = 0; k < 3; ++k) residual[3 * g + k] = T(scale) * a[k];
     }
     return true;
   }
-  static constexpr int kResiduals = 3 * GaussLegendre5::kPoints;
+  static constexpr int kResiduals = 3 * GaussLegendre2::kPoints;
   double restLength = 1;
   double weight = 1;
 };

@@ -1089,6 +1089,14 @@ TEST_F(CliReconstructTest, DatasetFormWritesMetricsForEveryMethodAndTheSplineBea
   EXPECT_TRUE(fs::is_regular_file(out / "markers.json"));
   EXPECT_EQ(core::readMesh(out / "sample_000000" / "spline.obj").numVertices(), tie_.mesh.numVertices());
   EXPECT_TRUE(fs::is_regular_file(out / "sample_000000" / "truth.obj"));
+
+  // Captured markers: noisy (fitted softly) and with a third of the curve markers missing; still solved.
+  const CliRun noisy = pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--noise", "0.3",
+                                   "--dropout", "0.3", "--seed", "2", "--out", (work_ / "noisy").string(), "--quiet"});
+  ASSERT_EQ(noisy.status, 0) << noisy;
+  const nlohmann::json captured = nlohmann::json::parse(readFile(work_ / "noisy" / "metrics.json"));
+  EXPECT_DOUBLE_EQ(captured["noise_cm"].get<double>(), 0.3);
+  EXPECT_LT(captured["methods"]["spline"]["garment_cm"].get<double>(), 2.0) << captured.dump(2);
 }
 
 TEST_F(CliReconstructTest, MarkersFormRebuildsOneSampleFromItsMarkers) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -12,6 +13,8 @@
 #include "pixelcloth/cage/body_cage.h"
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/cage/garment_cage.h"
+#include "pixelcloth/cage/markers.h"
+#include "pixelcloth/cage/spline_solver.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/body.h"
 #include "pixelcloth/core/garment.h"
@@ -75,6 +78,19 @@ void runBench(int repeats) {
   for (int p = 0; p < static_cast<int>(patchList.size()); ++p)
     slowest = std::max(slowest, medianSeconds(repeats * 20, [&] { fill->fillPatch(p, values, filled); }));
   emit("patches.fill_one_patch_slowest", 1e6 * slowest, "us", 50.0);
+  // Issue 5: the procedural fill of all 28 patches from the cage (bar 1 ms), and every cage curve of one frame
+  // through the length-preserving spline (bar 5 ms, goal 1 ms), from the default markers (10 cm) on a smoothly
+  // deformed rest shirt.
+  emit("patches.fill_all_patches", 1e3 * medianSeconds(repeats * 20, [&] { filled = fill->fill(values); }), "ms", 1.0);
+  {
+    const cage::Cage shirtCage = cage::garmentCage(shirt);
+    Eigen::MatrixX3d worn = shirt.mesh.V;
+    for (int v = 0; v < worn.rows(); ++v)
+      worn.row(v) += Eigen::RowVector3d(0.02 * std::sin(4 * worn(v, 1)), 0.01 * std::cos(3 * worn(v, 0)), 0.0);
+    const cage::MarkerSet markers = cage::placeMarkers(cage::defineMarkers(shirt, shirtCage), worn);
+    const cage::CageSplineSolver solver(shirt, shirtCage, shirt.mesh.V);
+    emit("cage.spline_all_curves", 1e3 * medianSeconds(repeats * 4, [&] { solver.solve(markers); }), "ms", 1.0);
+  }
 
   // Dressing (issue 4): the ~3K-vertex T-shirt on the ~14K-vertex mannequin, cages given.
   const cage::Cage bodyCage = cage::bodyCage(body), shirtCage = cage::garmentCage(shirt);

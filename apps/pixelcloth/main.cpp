@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerEdit(app);
   pixelcloth::apps::registerDataset(app);
   pixelcloth::apps::registerGenerate(app);
+  pixelcloth::apps::registerReconstruct(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
 
   try {

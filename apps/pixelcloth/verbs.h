@@ -23,6 +23,8 @@ void registerCage(CLI::App& app);
 void registerDress(CLI::App& app);
 void registerDataset(CLI::App& app);
 void registerGenerate(CLI::App& app);
+/// `markers` and `reconstruct` (issue 5).
+void registerReconstruct(CLI::App& app);
 
 /// Writes cage.json, patches.json and cage.png of a garment into `out` (the `cage` verb's outputs; the demo's too).
 void writeCageFolder(const core::Garment& garment, const std::filesystem::path& out, int size = 512);

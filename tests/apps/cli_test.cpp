@@ -301,6 +301,10 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
       {"generate",
        {"--count", "--seed", "--out", "--garment", "--shard", "--body", "--body-shape", "--corrupt-weights",
         "--threads", "--quiet"}},
+      {"markers", {"--garment", "--spacing", "--dataset", "--sample", "--noise", "--dropout", "--pose-out", "--out"}},
+      {"reconstruct",
+       {"--markers", "--pose", "--body", "--dressing", "--method", "--dataset", "--split", "--noise", "--dropout",
+        "--spacing", "--rest-lengths", "--out", "--quiet"}},
   };
   for (const auto& [verb, options] : verbs) {
     SCOPED_TRACE(verb);
@@ -1022,6 +1026,149 @@ TEST_F(CliTest, GenerateRefusesBadSettings) {
       pixelcloth({"generate", "--count", "4", "--body", (out / "nowhere").string(), "--out", (out / "d").string()});
   EXPECT_EQ(body.status, 2) << body;
   EXPECT_NE(body.err.find("nowhere"), std::string::npos) << body;
+}
+
+}  // namespace
+}  // namespace pixelcloth::apps
+
+namespace pixelcloth::apps {
+namespace {
+
+// ---------------------------------------------------------------------------------------------------------------------
+// markers and reconstruct (issue 5)
+
+/// A necktie dataset imported from frames of the rest tie wrapped around horizontal cylinders of a few radii (an
+/// isometric bend: the pattern lengths stay true), on the shared body; reconstructed from its own markers.
+class CliReconstructTest : public CliDatasetTest {
+ protected:
+  void SetUp() override {
+    CliDatasetTest::SetUp();
+    if (HasFatalFailure()) return;
+    const double top = tie_.mesh.V.col(1).maxCoeff();
+    std::string csv;
+    for (int i = 0; i < 3; ++i) {
+      core::Mesh frame = tie_.mesh;
+      const double radius = 0.25 + 0.1 * i;
+      for (int v = 0; v < frame.numVertices(); ++v) {
+        const double angle = (top - tie_.mesh.V(v, 1)) / radius;
+        frame.V(v, 1) = top - radius * std::sin(angle);
+        frame.V(v, 2) = tie_.mesh.V(v, 2) + radius * (1 - std::cos(angle));
+      }
+      core::writeMesh(work_ / "bent" / ("tie_" + std::to_string(i) + ".obj"), frame);
+      for (int j = 0; j < 4; ++j) csv += std::string(j ? "," : "") + "1,0,0,0,1,0,0,0,1";
+      csv += "\n";
+    }
+    writeFile(work_ / "bent.csv", csv);
+    const CliRun run = import(work_ / "bent", work_ / "bent.csv", work_ / "bent_data");
+    ASSERT_EQ(run.status, 0) << run;
+    data_ = work_ / "bent_data";
+  }
+  fs::path data_;
+};
+
+TEST_F(CliReconstructTest, DatasetFormWritesMetricsForEveryMethodAndTheSplineBeatsLinear) {
+  const fs::path out = work_ / "rec";
+  const CliRun run = pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--spacing", "0.08",
+                                 "--out", out.string(), "--quiet"});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_TRUE(noTemporaries(out));
+  const nlohmann::json metrics = nlohmann::json::parse(readFile(out / "metrics.json"));
+  EXPECT_EQ(metrics["samples"], 3);
+  for (const char* method : {"linear", "catmull_rom", "spline", "spline_anisotropic"}) {
+    SCOPED_TRACE(method);
+    ASSERT_TRUE(metrics["methods"].contains(method)) << metrics.dump(2);
+    const double cage = metrics["methods"][method]["cage_cm"], garment = metrics["methods"][method]["garment_cm"];
+    EXPECT_TRUE(std::isfinite(cage) && std::isfinite(garment));
+    EXPECT_GE(cage, 0);
+    EXPECT_LT(garment, 1.0) << "a bent tie rebuilt from markers 8 cm apart";
+    EXPECT_TRUE(metrics["methods"][method]["curves"].contains("outline"));
+  }
+  EXPECT_LT(metrics["methods"]["spline"]["cage_cm"].get<double>(),
+            metrics["methods"]["linear"]["cage_cm"].get<double>());
+  EXPECT_TRUE(isPng(out / "error_maps.png"));
+  EXPECT_TRUE(fs::is_regular_file(out / "markers.json"));
+  EXPECT_EQ(core::readMesh(out / "sample_000000" / "spline.obj").numVertices(), tie_.mesh.numVertices());
+  EXPECT_TRUE(fs::is_regular_file(out / "sample_000000" / "truth.obj"));
+
+  // Captured markers: noisy (fitted softly) and with a third of the curve markers missing; still solved.
+  const CliRun noisy = pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--noise", "0.3",
+                                   "--dropout", "0.3", "--seed", "2", "--out", (work_ / "noisy").string(), "--quiet"});
+  ASSERT_EQ(noisy.status, 0) << noisy;
+  const nlohmann::json captured = nlohmann::json::parse(readFile(work_ / "noisy" / "metrics.json"));
+  EXPECT_DOUBLE_EQ(captured["noise_cm"].get<double>(), 0.3);
+  EXPECT_LT(captured["methods"]["spline"]["garment_cm"].get<double>(), 2.0) << captured.dump(2);
+}
+
+TEST_F(CliReconstructTest, MarkersFormRebuildsOneSampleFromItsMarkers) {
+  const fs::path markers = work_ / "m.json", pose = work_ / "pose.json", obj = work_ / "tie.obj";
+  CliRun run = pixelcloth({"markers", "--dataset", data_.string(), "--sample", "1", "--pose-out", pose.string(),
+                           "--out", markers.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  const nlohmann::json set = nlohmann::json::parse(readFile(markers));
+  EXPECT_EQ(set["garment"], "necktie");
+  EXPECT_GT(set["markers"].size(), 8u);
+  run = pixelcloth({"reconstruct", "--markers", markers.string(), "--pose", pose.string(), "--dressing",
+                    (work_ / "dressing").string(), "--out", obj.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  const core::Mesh rebuilt = core::readMesh(obj), truth = core::readMesh(work_ / "bent" / "tie_1.obj");
+  ASSERT_EQ(rebuilt.numVertices(), truth.numVertices());
+  EXPECT_LT((rebuilt.V - truth.V).rowwise().norm().mean(), 0.01);
+  EXPECT_TRUE(rebuilt.hasUV());
+}
+
+TEST_F(CliReconstructTest, RefusesBadInputsNamingTheFileAndWritesNothing) {
+  const fs::path markers = work_ / "m.json", pose = work_ / "pose.json";
+  ASSERT_EQ(pixelcloth({"markers", "--dataset", data_.string(), "--sample", "0", "--pose-out", pose.string(), "--out",
+                        markers.string()})
+                .status,
+            0);
+  const std::string dressing = (work_ / "dressing").string();
+  auto reconstruct = [&](const fs::path& m, const fs::path& out) {
+    return pixelcloth({"reconstruct", "--markers", m.string(), "--pose", pose.string(), "--dressing", dressing, "--out",
+                       out.string()});
+  };
+  EXPECT_TRUE(refused(reconstruct(work_ / "missing.json", work_ / "a.obj"), {"missing.json"}));
+  EXPECT_FALSE(fs::exists(work_ / "a.obj"));
+
+  nlohmann::json set = nlohmann::json::parse(readFile(markers));
+  nlohmann::json edited = set;
+  for (auto& m : edited["markers"])
+    if (m.contains("curve")) {
+      m["curve"] = "collar";
+      break;
+    }
+  writeFile(work_ / "curve.json", edited.dump());
+  EXPECT_TRUE(refused(reconstruct(work_ / "curve.json", work_ / "b.obj"), {"curve.json", "collar"}));
+  EXPECT_FALSE(fs::exists(work_ / "b.obj"));
+
+  std::string text = set.dump();
+  const size_t at = text.find("\"position\":[");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + 12, "NaN,");
+  writeFile(work_ / "nan.json", text);
+  EXPECT_TRUE(refused(reconstruct(work_ / "nan.json", work_ / "c.obj"), {"nan.json"}));
+  EXPECT_FALSE(fs::exists(work_ / "c.obj"));
+
+  edited = set;
+  edited["garment"] = "skirt";
+  writeFile(work_ / "skirt.json", edited.dump());
+  EXPECT_TRUE(refused(reconstruct(work_ / "skirt.json", work_ / "d.obj"), {"skirt.json", "skirt"}));
+  EXPECT_FALSE(fs::exists(work_ / "d.obj"));
+
+  // T-shirt markers for a necktie dressing: the embedding does not fit.
+  ASSERT_EQ(pixelcloth({"markers", "--garment", "tshirt", "--out", (work_ / "shirt_def.json").string()}).status, 0);
+  EXPECT_TRUE(refused(reconstruct(work_ / "shirt_def.json", work_ / "e.obj"), {"shirt_def.json", "no position"}));
+  EXPECT_FALSE(fs::exists(work_ / "e.obj"));
+
+  // Dataset form: an unknown split, a folder that is not a dataset.
+  EXPECT_TRUE(refused(pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "validation", "--out",
+                                  (work_ / "r1").string()}),
+                      {"validation"}));
+  EXPECT_TRUE(
+      refused(pixelcloth({"reconstruct", "--dataset", (work_ / "nowhere").string(), "--out", (work_ / "r2").string()}),
+              {"nowhere"}));
+  EXPECT_TRUE(filesUnder(work_ / "r1").empty());
+  EXPECT_TRUE(filesUnder(work_ / "r2").empty());
 }
 
 }  // namespace

@@ -109,11 +109,16 @@ GarmentSimulator::GarmentSimulator(const core::Body& body, const core::Garment& 
   placeBody(core::Pose::identity());
   rest_ = settled ? *settled : dressing.relaxed;
   PIXELCLOTH_CHECK(rest_.rows() == n, "simulation: the settled garment has " << rest_.rows() << " vertices, not " << n);
-  // Frictionless: the dressing's leftover compression relaxes instead of sticking to the body.
-  solver_->setFriction(0);
-  const RelaxReport report = solver_->relax(rest_, settled ? 1 : options_.restIterations);
-  solver_->setFriction(options_.solver.friction);
-  solver_->freezeContactSprings();  // no refactoring per sample, and samples independent of each other
+  RelaxReport report;
+  if (!settled) {
+    // Frictionless: the dressing's leftover compression relaxes instead of sticking to the body.
+    solver_->setFriction(0);
+    report = solver_->relax(rest_, options_.restIterations);
+    solver_->setFriction(options_.solver.friction);
+  }
+  // Springs on the contacts of the settled drape, for good: no refactoring per sample, and every simulator built
+  // from the same drape (one per thread) gives the same sample for the same pose.
+  solver_->freezeContactSprings(rest_);
   restStats_ = measure(rest_);
   restStats_.iterations = report.iterations;
   restStats_.residual = report.residual;

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <thread>
 
@@ -56,6 +57,9 @@ nlohmann::json simulationSettings(const SimulationOptions& s) {
           {"gravity", q.gravity},
           {"time_scale_s", q.timeScale},
           {"contact_offset_m", q.contactOffset},
+          {"contact_stiffness_n_per_m", q.contactStiffness},
+          {"friction", q.friction},
+          {"max_penetration_m", s.maxPenetration},
           {"tolerance_m", q.tolerance},
           {"step_degrees", s.stepDegrees},
           {"iterations_per_step", s.iterationsPerStep},
@@ -64,6 +68,38 @@ nlohmann::json simulationSettings(const SimulationOptions& s) {
           {"max_area_ratio", s.maxAreaRatio},
           {"pinned_vertices", s.pinned.size()},
           {"pose_sampler", "appendix: half-normal centre line, azimuth / sine-altitude / twist arms, pruned"}};
+}
+
+/// Runs job(simulator, k) for every k in [0, count) on `threads` threads, the calling one with `first`, each other
+/// with its own simulator built from `first`'s settled drape (so a result does not depend on the thread). The first
+/// exception stops the others and is rethrown.
+void forEachOnSimulators(GarmentSimulator& first, const core::Body& body, const core::Garment& garment,
+                         const cage::Dressing& dressing, const SimulationOptions& options, int count, int threads,
+                         const std::function<void(GarmentSimulator&, int)>& job) {
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failureMutex;
+  auto work = [&](GarmentSimulator& simulator) {
+    try {
+      for (int k = next++; k < count; k = next++) job(simulator, k);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(failureMutex);
+      if (!failure) failure = std::current_exception();
+      next = count;
+    }
+  };
+  std::vector<std::unique_ptr<GarmentSimulator>> simulators;
+  for (int t = 1; t < threads; ++t)
+    simulators.push_back(std::make_unique<GarmentSimulator>(body, garment, dressing, options, &first.restDrape()));
+  std::vector<std::thread> workers;
+  for (auto& simulator : simulators) workers.emplace_back(work, std::ref(*simulator));
+  work(first);
+  for (std::thread& worker : workers) worker.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+int threadCount(int requested, int jobs) {
+  return std::max(1, std::min(jobs, requested > 0 ? requested : static_cast<int>(std::thread::hardware_concurrency())));
 }
 
 }  // namespace
@@ -120,9 +156,7 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
   GenerateReport report;
   report.resumed = writer.done();
   if (!pending.empty()) {
-    const int threads = std::max(
-        1, std::min(static_cast<int>(pending.size()),
-                    options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency())));
+    const int threads = threadCount(options.threads, static_cast<int>(pending.size()));
     PIXELCLOTH_INFO("generate: settling the garment in the rest pose");
     GarmentSimulator first(body, garment, dressing, options.simulation);
     PIXELCLOTH_INFO("generate: rest drape settled in " << first.restStats().iterations << " iterations ("
@@ -131,14 +165,11 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
     std::unique_ptr<core::Progress> progress;
     if (!options.quiet)
       progress = std::make_unique<core::Progress>("generate " + options.garment, static_cast<int>(pending.size()));
-    std::atomic<size_t> next{0};
     std::atomic<int> rejected{0};
     std::mutex progressMutex;
-    std::exception_ptr failure;
-    std::mutex failureMutex;
-    auto work = [&](GarmentSimulator& simulator) {
-      try {
-        for (size_t k = next++; k < pending.size(); k = next++) {
+    forEachOnSimulators(
+        first, body, garment, dressing, options.simulation, static_cast<int>(pending.size()), threads,
+        [&](GarmentSimulator& simulator, int k) {
           const int index = pending[k];
           bool done = false;
           for (int attempt = 0; attempt < options.maxAttempts && !done; ++attempt) {
@@ -160,22 +191,7 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
             std::lock_guard<std::mutex> lock(progressMutex);
             progress->advance();
           }
-        }
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(failureMutex);
-        if (!failure) failure = std::current_exception();
-        next = pending.size();
-      }
-    };
-    std::vector<std::thread> workers;
-    std::vector<std::unique_ptr<GarmentSimulator>> simulators;
-    for (int t = 1; t < threads; ++t)
-      simulators.push_back(
-          std::make_unique<GarmentSimulator>(body, garment, dressing, options.simulation, &first.restDrape()));
-    for (int t = 1; t < threads; ++t) workers.emplace_back(work, std::ref(*simulators[t - 1]));
-    work(first);
-    for (std::thread& worker : workers) worker.join();
-    if (failure) std::rethrow_exception(failure);
+        });
     if (progress) progress->finish();
     report.added = static_cast<int>(pending.size());
     report.rejected = rejected;
@@ -183,6 +199,31 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
   writer.finish();
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
+}
+
+}  // namespace pixelcloth::sim
+
+namespace pixelcloth::sim {
+
+std::vector<SampleStats> simulatePoses(const core::Body& body, const core::Garment& garment,
+                                       const cage::Dressing& dressing, const std::vector<core::Pose>& poses,
+                                       const SimulationOptions& options, int threads, bool quiet) {
+  std::vector<SampleStats> stats(poses.size());
+  if (poses.empty()) return stats;
+  GarmentSimulator first(body, garment, dressing, options);
+  std::unique_ptr<core::Progress> progress;
+  if (!quiet) progress = std::make_unique<core::Progress>("simulate " + garment.name, static_cast<int>(poses.size()));
+  std::mutex progressMutex;
+  forEachOnSimulators(first, body, garment, dressing, options, static_cast<int>(poses.size()),
+                      threadCount(threads, static_cast<int>(poses.size())), [&](GarmentSimulator& simulator, int k) {
+                        stats[k] = simulator.simulate(poses[k]).stats;
+                        if (progress) {
+                          std::lock_guard<std::mutex> lock(progressMutex);
+                          progress->advance();
+                        }
+                      });
+  if (progress) progress->finish();
+  return stats;
 }
 
 }  // namespace pixelcloth::sim

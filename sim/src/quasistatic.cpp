@@ -480,9 +480,15 @@ void QuasistaticSolver::moveColliders(const std::vector<Eigen::MatrixX3d>& verti
   }
 }
 
-void QuasistaticSolver::freezeContactSprings() {
-  PIXELCLOTH_CHECK(!impl_->colliders.empty(), "solver: no colliders, so no contact springs to freeze");
-  impl_->springsFrozen = true;
+void QuasistaticSolver::freezeContactSprings(const Eigen::MatrixX3d& x) {
+  Impl& s = *impl_;
+  PIXELCLOTH_CHECK(!s.colliders.empty(), "solver: no colliders, so no contact springs to freeze");
+  PIXELCLOTH_CHECK(x.rows() == numVertices(),
+                   "solver: " << x.rows() << " positions for " << numVertices() << " cloth vertices");
+  s.springsFrozen = false;
+  s.queryContacts(x, options_.contactActivation);
+  s.updateContactWeights(options_.contactStiffness, true);
+  s.springsFrozen = true;
 }
 
 void QuasistaticSolver::setFriction(double friction) {

@@ -48,4 +48,11 @@ struct GenerateReport {
 /// finished folder (sim/dataset.h, docs/dataset.md).
 GenerateReport generateDataset(const std::filesystem::path& out, const GenerateOptions& options);
 
+/// Simulates `garment` (dressed by `dressing`) on `body` in every one of `poses` on `threads` threads (0: one per
+/// core), with progress on stderr unless `quiet`: each pose's statistics, rejection included, in the order given.
+/// No pose is redrawn: for rejection rates over a fixed set of poses.
+std::vector<SampleStats> simulatePoses(const core::Body& body, const core::Garment& garment,
+                                       const cage::Dressing& dressing, const std::vector<core::Pose>& poses,
+                                       const SimulationOptions& options = {}, int threads = 0, bool quiet = false);
+
 }  // namespace pixelcloth::sim

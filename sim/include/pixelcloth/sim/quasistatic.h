@@ -80,11 +80,11 @@ class QuasistaticSolver {
   void setColliders(std::vector<Collider> colliders, std::vector<int> vertexCollider);
   /// Moves the colliders' vertices (same faces as before); the next iteration looks up every contact again.
   void moveColliders(const std::vector<Eigen::MatrixX3d>& vertices);
-  /// From now on the contact springs stay on the vertices that carry them now and the system is never refactored:
-  /// vertices that touch the body later are held by projection alone, those that lift off are only damped. Every
-  /// later call then costs no factorisation and its result cannot depend on the calls before it. For a garment
-  /// posed many times from one settled drape, freeze after settling.
-  void freezeContactSprings();
+  /// Puts the contact springs on the vertices in contact at `x` (#V x 3) and keeps them there from now on: the system
+  /// is never refactored, vertices that touch the body later are held by projection alone, those that lift off are
+  /// only damped. Every later call then costs no factorisation and its result cannot depend on the calls before it.
+  /// For a garment posed many times from one settled drape, freeze at that drape.
+  void freezeContactSprings(const Eigen::MatrixX3d& x);
   /// Changes the friction coefficient for the following calls (e.g. 0 to settle a garment fully before posing it).
   void setFriction(double friction);
   /// Targets of the pinned vertices, #pinned x 3, in the order given to the constructor.

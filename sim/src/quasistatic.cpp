@@ -466,6 +466,10 @@ void QuasistaticSolver::setColliders(std::vector<Collider> colliders, std::vecto
   for (Collider& collider : colliders) impl_->colliders.emplace_back(std::move(collider));
   impl_->vertexCollider = std::move(vertexCollider);
   impl_->contacts.assign(numVertices(), Contact{});
+  // New colliders, new contacts: springs frozen for the old ones no longer apply.
+  impl_->springsFrozen = false;
+  impl_->contactWeight.setZero();
+  PIXELCLOTH_CHECK(impl_->solver.compute(impl_->system), "solver: the cloth system could not be factored");
 }
 
 void QuasistaticSolver::moveColliders(const std::vector<Eigen::MatrixX3d>& vertices) {

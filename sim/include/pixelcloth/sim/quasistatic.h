@@ -76,9 +76,10 @@ class QuasistaticSolver {
   ~QuasistaticSolver();
   QuasistaticSolver(QuasistaticSolver&&) noexcept;
 
-  /// Colliders and, per cloth vertex, the index of the one it collides with (-1: none).
+  /// Colliders and, per cloth vertex, the index of the one it collides with (-1: none). Lifts a freeze of the contact
+  /// springs (freezeContactSprings): they belonged to the old colliders.
   void setColliders(std::vector<Collider> colliders, std::vector<int> vertexCollider);
-  /// Moves the colliders' vertices (same faces as before); the next iteration looks up every contact again.
+  /// Moves the colliders' vertices (same faces as before); the next `relax` call looks up every contact again.
   void moveColliders(const std::vector<Eigen::MatrixX3d>& vertices);
   /// Puts the contact springs on the vertices in contact at `x` (#V x 3) and keeps them there from now on: the system
   /// is never refactored, vertices that touch the body later are held by projection alone, those that lift off are

@@ -3,7 +3,6 @@
 #include <chrono>
 #include <fstream>
 #include <iomanip>
-#include <map>
 #include <memory>
 #include <sstream>
 
@@ -419,33 +418,33 @@ void runDemo(const DemoArgs& args) {
     sim::PoseSampler sampler(body, options);
     std::vector<Pose> drawn, survivors, kept;
     for (int k = 0; k < args.filterPoses; ++k) drawn.push_back(sampler.draw());
-    std::map<std::string, int> rejected{{"arm_inside_torso", 0}};
+    sim::DatasetStats tally;  // the same tally as a dataset's manifest: kept samples, rejections by reason
     for (const Pose& pose : drawn) {
       if (sampler.armInsideTorso(pose))
-        ++rejected["arm_inside_torso"];
+        tally.reject(sim::Rejection::ArmInsideTorso);
       else
         survivors.push_back(pose);
     }
     const Garment shirt = makeTShirt();
     const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), shirt, cage::garmentCage(shirt));
     const std::vector<sim::SampleStats> stats = sim::simulatePoses(body, shirt, dressing, survivors);
-    double seconds = 0, deepest = 0;
+    double seconds = 0;
     for (size_t k = 0; k < stats.size(); ++k) {
       seconds += stats[k].seconds;
       if (stats[k].rejection == sim::Rejection::None) {
         kept.push_back(survivors[k]);
-        deepest = std::max(deepest, stats[k].maxPenetration);
+        tally.add(stats[k]);
       } else {
-        ++rejected[sim::rejectionName(stats[k].rejection)];
+        tally.reject(stats[k].rejection);
       }
     }
     writePng(out / "poses" / "joint_histograms.png", sim::renderJointHistograms(drawn, kept));
     report["pose_sampling"] = {{"drawn", drawn.size()},
                                {"kept", kept.size()},
-                               {"rejected", rejected},
+                               {"rejected", tally.rejected},
                                {"rejection_rate", 1.0 - static_cast<double>(kept.size()) / drawn.size()},
                                {"mean_seconds_per_simulation", survivors.empty() ? 0.0 : seconds / survivors.size()},
-                               {"max_penetration_mm_kept", 1e3 * deepest}};
+                               {"max_penetration_mm_kept", 1e3 * tally.maxPenetration}};
   });
   {
     std::ostringstream text;

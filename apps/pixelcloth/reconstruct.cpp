@@ -76,6 +76,7 @@ struct ReconstructArgs {
   std::uint64_t seed = 0;
   int meshes = 3;
   std::string restLengths = "pattern";
+  std::string lengthModel;  // markers form: none by default; dataset form: "fit" by default
   double anisoThetaDegrees = 0, anisoRatio = 0.6;
   cage::SplineOptions spline;
   bool quiet = false;
@@ -91,6 +92,11 @@ void runFromMarkers(const ReconstructArgs& args) {
   options.spline.restLengths = cage::restLengthsFromName(args.restLengths, "reconstruct --rest-lengths");
   // Every input is read and checked before the expensive steps (body, dressing), nothing is written before the end.
   const cage::MarkerSet markers = cage::readMarkers(args.markers);
+  PIXELCLOTH_CHECK(args.lengthModel != "fit",
+                   "reconstruct --markers --length-model fit: there is no training data to fit on; give the "
+                   "length_model.json a dataset run wrote, or none");
+  if (!args.lengthModel.empty() && args.lengthModel != "none")
+    options.lengthModel = cage::readLengthModel(args.lengthModel);
   const core::Pose pose = core::readPose(args.pose);
   const core::Garment garment = garmentByName(markers.garment, args.markers);
   const cage::Cage cage = cage::garmentCage(garment);
@@ -111,6 +117,7 @@ void runFromMarkers(const ReconstructArgs& args) {
     rest = dressing.relaxed;
     embedding = dressing.embedding;
   }
+  if (options.lengthModel) options.lengthModel->validate(garment.name, cage, args.lengthModel);
   const sim::GarmentReconstructor reconstructor(body, garment, embedding, rest, options);
   const sim::Reconstruction result = reconstructor.reconstruct(markers, pose, method);
   core::Mesh mesh = garment.mesh;
@@ -132,6 +139,7 @@ void runFromDataset(const ReconstructArgs& args) {
   options.reconstruction.spline.bendingWeight = args.spline.bendingWeight;
   options.reconstruction.spline.stretch = args.spline.stretch;
   options.reconstruction.spline.tangentPrior = args.spline.tangentPrior;
+  options.lengthModel = args.lengthModel.empty() ? "fit" : args.lengthModel;
   options.reconstruction.anisotropic.theta = args.anisoThetaDegrees * M_PI / 180;
   options.reconstruction.anisotropic.ratio = args.anisoRatio;
   options.meshes = args.meshes;
@@ -205,6 +213,9 @@ void registerReconstruct(CLI::App& app) {
       ->capture_default_str();
   verb->add_option("--bending", args->spline.bendingWeight, "Spline: weight of the bending term")
       ->capture_default_str();
+  verb->add_option("--length-model", args->lengthModel,
+                   "Spline: worn segment lengths. Dataset form: fit (on the train split; default), none (rest "
+                   "lengths) or a length_model.json; markers form: a length_model.json, or none (default)");
   verb->add_option("--aniso-theta", args->anisoThetaDegrees,
                    "spline_anisotropic: pattern-space direction of faster diffusion, degrees (0 = u, 90 = v)")
       ->capture_default_str();

@@ -169,6 +169,7 @@ CurveSpline fitCurveSpline(const std::vector<Eigen::Vector3d>& markers, const st
   spline.restLengths = restLengths;
   spline.linear = options.method == CurveMethod::Linear;
   spline.tangents = catmullRomTangents(markers, restLengths, closed);
+  const std::vector<Eigen::Vector3d> start = spline.tangents;
   if (summary) ++summary->curves;
 
   if (options.method == CurveMethod::Spline) {
@@ -192,7 +193,7 @@ CurveSpline fitCurveSpline(const std::vector<Eigen::Vector3d>& markers, const st
     for (int k = 0; k < K; ++k) {
       if (options.tangentPrior > 0) {
         auto* prior = new TangentPriorResidual;
-        for (int c = 0; c < 3; ++c) prior->prior[c] = spline.tangents[k][c];
+        for (int c = 0; c < 3; ++c) prior->prior[c] = start[k][c];
         prior->weight = options.tangentPrior;
         problem.AddResidualBlock(new ceres::AutoDiffCostFunction<TangentPriorResidual, 3, 3>(prior), nullptr, d[k]);
       }
@@ -225,7 +226,7 @@ CurveSpline fitCurveSpline(const std::vector<Eigen::Vector3d>& markers, const st
     for (int k = 0; k < K; ++k) finite = finite && spline.points[k].allFinite() && spline.tangents[k].allFinite();
     if (!finite) {
       spline.points = markers;
-      spline.tangents = catmullRomTangents(markers, restLengths, closed);
+      spline.tangents = start;
     }
   }
   if (summary) {
@@ -243,9 +244,41 @@ CurveSpline fitCurveSpline(const std::vector<Eigen::Vector3d>& markers, const st
 // ---------------------------------------------------------------------------------------------------------------------
 // The cage solver
 
+namespace {
+/// The markers of one curve in one frame.
+struct CurveMarkers {
+  std::vector<int> index;               ///< position along the curve of each marker, ascending
+  std::vector<Eigen::Vector3d> points;  ///< their positions
+  std::vector<double> knot;  ///< rest arc length of each marker from the first; one more entry: the loop's length
+                             ///< (closed) or the last marker's again (open)
+  std::vector<double> rest;  ///< rest length of each segment
+};
+
+/// Length of `curve` from its vertex index `from` to `to` (wrapping round a closed curve) through `positions`, after
+/// `passes` passes of the [1/4, 1/2, 1/4] filter over the vertices between them (both ends held).
+double smoothedSegmentLength(const Eigen::MatrixX3d& positions, const CageCurve& curve, int from, int to, int passes) {
+  const int n = static_cast<int>(curve.vertices.size());
+  std::vector<Eigen::Vector3d> x;
+  for (int i = from;; i = (i + 1) % n) {
+    x.push_back(positions.row(curve.vertices[i]).transpose());
+    if (i == to) break;
+  }
+  std::vector<Eigen::Vector3d> next = x;
+  for (int pass = 0; pass < passes; ++pass) {
+    for (size_t i = 1; i + 1 < x.size(); ++i) next[i] = 0.5 * x[i] + 0.25 * (x[i - 1] + x[i + 1]);
+    std::swap(x, next);
+  }
+  double length = 0;
+  for (size_t i = 0; i + 1 < x.size(); ++i) length += (x[i + 1] - x[i]).norm();
+  return length;
+}
+}  // namespace
+
 struct CageSplineSolver::Impl {
   Cage cage;
+  std::string garmentName;
   SplineOptions options;
+  std::optional<LengthModel> lengthModel;
   int numVertices = 0;
   std::vector<int> cageVertices;
   std::vector<std::vector<double>> arc;               ///< per curve: cumulative rest arc length per index
@@ -263,6 +296,52 @@ struct CageSplineSolver::Impl {
     geodesicCache[key] = d;
     return d;
   }
+
+  /// The markers of curve `c` (positions from `positions` when given, else from the markers), with the checks that
+  /// each curve has what its spline needs.
+  CurveMarkers collect(int c, const MarkerSet& markers, const Eigen::MatrixX3d* positions = nullptr) const {
+    const CageCurve& curve = cage.curves[c];
+    const std::vector<double>& s = arc[c];
+    const int n = static_cast<int>(curve.vertices.size());
+    std::map<int, Eigen::Vector3d> onCurve;
+    for (const Marker& m : markers.markers) {
+      auto it = indexOf[c].find(m.vertex);
+      if (it != indexOf[c].end())
+        onCurve.emplace(it->second, positions ? Eigen::Vector3d(positions->row(m.vertex)) : m.position);
+    }
+    if (!curve.closed) {
+      PIXELCLOTH_CHECK(onCurve.count(0) && onCurve.count(n - 1),
+                       "markers: curve '" << curve.name << "' needs a marker at each of its ends (vertices "
+                                          << curve.vertices.front() << " and " << curve.vertices.back() << ")");
+    } else {
+      PIXELCLOTH_CHECK(onCurve.size() >= 3, "markers: closed curve '" << curve.name << "' has " << onCurve.size()
+                                                                      << " markers, at least 3 needed");
+    }
+    CurveMarkers out;
+    for (const auto& [i, p] : onCurve) {
+      out.index.push_back(i);
+      out.points.push_back(p);
+    }
+    const int K = static_cast<int>(out.index.size());
+    const int segments = curve.closed ? K : K - 1;
+    out.knot.resize(K + 1);
+    for (int k = 0; k < K; ++k) out.knot[k] = arcFrom(c, out.index[0], out.index[k]);
+    out.knot[K] = curve.closed ? s[n] : out.knot[K - 1];
+    out.rest.resize(segments);
+    for (int k = 0; k < segments; ++k) {
+      out.rest[k] = options.restLengths == RestLengths::Geodesic
+                        ? geodesicLength(curve.vertices[out.index[k]], curve.vertices[out.index[(k + 1) % K]])
+                        : out.knot[k + 1] - out.knot[k];
+      out.rest[k] = std::max(out.rest[k], 1e-9);
+    }
+    return out;
+  }
+
+  /// Rest arc length of curve index i measured from index `first`, unwrapped around a closed curve.
+  double arcFrom(int c, int first, int i) const {
+    const std::vector<double>& s = arc[c];
+    return i >= first ? s[i] - s[first] : s.back() - s[first] + s[i];
+  }
 };
 
 CageSplineSolver::CageSplineSolver(const core::Garment& garment, const Cage& cage,
@@ -270,6 +349,7 @@ CageSplineSolver::CageSplineSolver(const core::Garment& garment, const Cage& cag
     : impl_(std::make_unique<Impl>()) {
   options.validate();
   impl_->cage = cage;
+  impl_->garmentName = garment.name;
   impl_->options = options;
   impl_->numVertices = garment.mesh.numVertices();
   const bool needs3d = options.restLengths != RestLengths::Pattern;
@@ -298,6 +378,65 @@ CageSplineSolver::CageSplineSolver(CageSplineSolver&&) noexcept = default;
 const std::vector<int>& CageSplineSolver::cageVertices() const { return impl_->cageVertices; }
 const Cage& CageSplineSolver::cage() const { return impl_->cage; }
 const SplineOptions& CageSplineSolver::options() const { return impl_->options; }
+const std::optional<LengthModel>& CageSplineSolver::lengthModel() const { return impl_->lengthModel; }
+
+void CageSplineSolver::setLengthModel(std::optional<LengthModel> model, const std::string& context) {
+  if (model) model->validate(impl_->garmentName, impl_->cage, context);
+  impl_->lengthModel = std::move(model);
+}
+
+LengthModel CageSplineSolver::fitLengthModel(const MarkerSet& definition, const std::vector<Eigen::MatrixX3d>& samples,
+                                             double markerSpacing, const LengthModelOptions& options) const {
+  options.validate();
+  PIXELCLOTH_CHECK(!samples.empty(), "length model: no training garments to fit on");
+  const int C = static_cast<int>(impl_->cage.curves.size());
+  // Per curve: (chord / rest, smoothed length / rest) of every training segment.
+  std::vector<std::vector<Eigen::Vector2d>> points(C);
+  for (size_t i = 0; i < samples.size(); ++i) {
+    PIXELCLOTH_CHECK(samples[i].rows() == impl_->numVertices && samples[i].allFinite(),
+                     "length model: training garment " << i << " has " << samples[i].rows() << " rows, expected "
+                                                       << impl_->numVertices << " finite positions");
+    for (int c = 0; c < C; ++c) {
+      const CurveMarkers m = impl_->collect(c, definition, &samples[i]);
+      const int K = static_cast<int>(m.index.size());
+      for (int k = 0; k < static_cast<int>(m.rest.size()); ++k) {
+        const double chord = (m.points[(k + 1) % K] - m.points[k]).norm();
+        const double worn = smoothedSegmentLength(samples[i], impl_->cage.curves[c], m.index[k], m.index[(k + 1) % K],
+                                                  options.smoothingPasses);
+        points[c].emplace_back(chord / m.rest[k], worn / m.rest[k]);
+      }
+    }
+  }
+  // Least squares of ratio = a + b x: normal equations, optionally pulled towards a prior line with weight w.
+  auto fitLine = [](const std::vector<Eigen::Vector2d>& xy, const Eigen::Vector2d& prior, double w) {
+    Eigen::Matrix2d A = w * Eigen::Matrix2d::Identity();
+    Eigen::Vector2d rhs = w * prior;
+    for (const Eigen::Vector2d& p : xy) {
+      const Eigen::Vector2d row(1, p.x());
+      A += row * row.transpose();
+      rhs += row * p.y();
+    }
+    return Eigen::Vector2d(A.ldlt().solve(rhs));
+  };
+  std::vector<Eigen::Vector2d> pooled;
+  for (const auto& list : points) pooled.insert(pooled.end(), list.begin(), list.end());
+  // The pooled line gets a whisper of the length-preserving prior (1, 0) so that it is defined even when every chord
+  // is the same.
+  const Eigen::Vector2d all = fitLine(pooled, Eigen::Vector2d(1, 0), 1e-6);
+  LengthModel model;
+  model.garment = impl_->garmentName;
+  model.markerSpacing = markerSpacing;
+  model.smoothingPasses = options.smoothingPasses;
+  model.samples = static_cast<int>(samples.size());
+  for (int c = 0; c < C; ++c) {
+    const Eigen::Vector2d line = fitLine(points[c], all, options.shrinkage);
+    double squared = 0;
+    for (const Eigen::Vector2d& p : points[c]) squared += std::pow(line[0] + line[1] * p.x() - p.y(), 2);
+    model.curves[impl_->cage.curves[c].name] = {line[0], line[1], static_cast<int>(points[c].size()),
+                                                std::sqrt(squared / std::max<size_t>(1, points[c].size()))};
+  }
+  return model;
+}
 
 CageFit CageSplineSolver::solve(const MarkerSet& markers) const { return solve(markers, impl_->options.method); }
 
@@ -305,6 +444,7 @@ CageFit CageSplineSolver::solve(const MarkerSet& markers, CurveMethod method) co
   SplineOptions options = impl_->options;
   options.method = method;
   const int V = impl_->numVertices;
+  const int C = static_cast<int>(impl_->cage.curves.size());
   CageFit fit;
   fit.positions = Eigen::MatrixX3d::Zero(V, 3);
   Eigen::VectorXi count = Eigen::VectorXi::Zero(V);
@@ -312,55 +452,40 @@ CageFit CageSplineSolver::solve(const MarkerSet& markers, CurveMethod method) co
     PIXELCLOTH_CHECK(m.hasPosition() && m.vertex >= 0 && m.vertex < V,
                      "spline: marker '" << m.name << "' has no position or a vertex out of range");
 
-  for (size_t c = 0; c < impl_->cage.curves.size(); ++c) {
+  std::vector<CurveMarkers> all(C);
+  std::vector<std::vector<double>> lengths(C);  // what each segment's length term aims at
+  const bool learned = impl_->lengthModel && method == CurveMethod::Spline;
+  for (int c = 0; c < C; ++c) {
+    all[c] = impl_->collect(c, markers);
+    lengths[c] = all[c].rest;
+    if (learned) {
+      const int K = static_cast<int>(all[c].points.size());
+      for (size_t k = 0; k < lengths[c].size(); ++k)
+        lengths[c][k] = impl_->lengthModel->target(impl_->cage.curves[c].name, all[c].rest[k],
+                                                   (all[c].points[(k + 1) % K] - all[c].points[k]).norm());
+    }
+  }
+  // The learned lengths are the worn ones, to be met both ways; rest lengths are lower bounds when cloth may stretch.
+  if (learned) options.stretch = false;
+
+  for (int c = 0; c < C; ++c) {
     const CageCurve& curve = impl_->cage.curves[c];
-    const std::vector<double>& s = impl_->arc[c];
+    const CurveMarkers& m = all[c];
     const int n = static_cast<int>(curve.vertices.size());
-    // The markers on this curve, in curve order (one per vertex).
-    std::map<int, Eigen::Vector3d> onCurve;
-    for (const Marker& m : markers.markers) {
-      auto it = impl_->indexOf[c].find(m.vertex);
-      if (it != impl_->indexOf[c].end()) onCurve.emplace(it->second, m.position);
-    }
-    if (!curve.closed) {
-      PIXELCLOTH_CHECK(onCurve.count(0) && onCurve.count(n - 1),
-                       "markers: curve '" << curve.name << "' needs a marker at each of its ends (vertices "
-                                          << curve.vertices.front() << " and " << curve.vertices.back() << ")");
-    } else {
-      PIXELCLOTH_CHECK(onCurve.size() >= 3, "markers: closed curve '" << curve.name << "' has " << onCurve.size()
-                                                                      << " markers, at least 3 needed");
-    }
-    std::vector<int> index;
-    std::vector<Eigen::Vector3d> points;
-    for (const auto& [i, p] : onCurve) {
-      index.push_back(i);
-      points.push_back(p);
-    }
-    const int K = static_cast<int>(index.size());
+    const int K = static_cast<int>(m.index.size());
     const int segments = curve.closed ? K : K - 1;
-    // Rest arc length of curve index i measured from marker 0, unwrapped around a closed curve.
-    auto arcFrom = [&](int i) { return i >= index[0] ? s[i] - s[index[0]] : s[n] - s[index[0]] + s[i]; };
-    std::vector<double> rest(segments), knot(K + 1);
-    for (int k = 0; k < K; ++k) knot[k] = arcFrom(index[k]);
-    knot[K] = curve.closed ? s[n] : knot[K - 1];
-    for (int k = 0; k < segments; ++k) {
-      rest[k] = options.restLengths == RestLengths::Geodesic
-                    ? impl_->geodesicLength(curve.vertices[index[k]], curve.vertices[index[(k + 1) % K]])
-                    : knot[k + 1] - knot[k];
-      rest[k] = std::max(rest[k], 1e-9);
-    }
-    CurveSpline spline = fitCurveSpline(points, rest, curve.closed, options, &fit.summary);
+    CurveSpline spline = fitCurveSpline(m.points, lengths[c], curve.closed, options, &fit.summary);
 
     // Every vertex of the curve at its rest arc-length fraction within its segment.
     int segment = 0;
     std::array<double, kArcTableSteps + 1> table{};
     int tableOf = -1;
     for (int step = 0; step < n; ++step) {
-      const int i = (index[0] + step) % n;
-      const double a = arcFrom(i);
-      while (segment + 1 < segments && a > knot[segment + 1]) ++segment;
-      const double span = knot[segment + 1] - knot[segment];
-      const double fraction = span > 0 ? std::clamp((a - knot[segment]) / span, 0.0, 1.0) : 0.0;
+      const int i = (m.index[0] + step) % n;
+      const double a = impl_->arcFrom(c, m.index[0], i);
+      while (segment + 1 < segments && a > m.knot[segment + 1]) ++segment;
+      const double span = m.knot[segment + 1] - m.knot[segment];
+      const double fraction = span > 0 ? std::clamp((a - m.knot[segment]) / span, 0.0, 1.0) : 0.0;
       Eigen::Vector3d x;
       if (spline.linear) {
         x = spline.position(segment, fraction);

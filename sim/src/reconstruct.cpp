@@ -64,6 +64,8 @@ void DatasetReconstructionOptions::validate() const {
   capture.validate();
   reconstruction.validate();
   PIXELCLOTH_CHECK(meshes >= 0, "reconstruct: meshes " << meshes << ", expected >= 0");
+  PIXELCLOTH_CHECK(!lengthModel.empty(), "reconstruct: the length model is empty; expected fit, none or a file");
+  lengthModelFit.validate();
 }
 
 // ---------------------------------------------------------------------------------------------------------------------
@@ -119,6 +121,11 @@ GarmentReconstructor::GarmentReconstructor(const core::Body& body, const core::G
   impl_->cage = cage::garmentCage(garment);
   impl_->patches = patches::segmentPatches(garment, cage::cutEdges(impl_->cage));
   impl_->solver = std::make_unique<cage::CageSplineSolver>(impl_->garment, impl_->cage, restPositions, options.spline);
+  impl_->solver->setLengthModel(options.lengthModel);
+}
+
+void GarmentReconstructor::setLengthModel(std::optional<cage::LengthModel> model, const std::string& context) {
+  impl_->solver->setLengthModel(std::move(model), context);
 }
 
 GarmentReconstructor::~GarmentReconstructor() = default;
@@ -228,9 +235,37 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
   const core::Embedding embedding = loadDatasetEmbedding(datasetFolder, body.mesh.numFaces());
   const Eigen::MatrixX3d rest = loadDatasetRestPositions(datasetFolder, garment.mesh.numVertices());
   const auto start = std::chrono::steady_clock::now();
-  const GarmentReconstructor reconstructor(body, garment, embedding, rest, options.reconstruction);
+  GarmentReconstructor reconstructor(body, garment, embedding, rest, options.reconstruction);
   const cage::Cage& cage = reconstructor.cage();
   const cage::MarkerSet definition = cage::defineMarkers(garment, cage, options.markers);
+  nlohmann::json lengthModelJson = "none";
+  if (options.lengthModel == "fit") {
+    const std::vector<int> train = dataset.rowsOf(Split::Train);
+    if (train.empty()) {
+      PIXELCLOTH_INFO("reconstruct: " << datasetFolder.string()
+                                      << " has no training samples to fit the spline's length model on; the "
+                                         "spline keeps rest lengths");
+      reconstructor.setLengthModel(std::nullopt);
+    } else {
+      std::vector<Eigen::MatrixX3d> samples;
+      for (int r : train) samples.push_back(dataset.positionsOf(r).cast<double>());
+      const cage::LengthModel model =
+          reconstructor.solver().fitLengthModel(definition, samples, options.markers.spacing, options.lengthModelFit);
+      reconstructor.setLengthModel(model);
+      lengthModelJson = {{"source", "fitted on the train split"}, {"samples", model.samples}};
+    }
+  } else if (options.lengthModel == "none") {
+    reconstructor.setLengthModel(std::nullopt);
+  } else {
+    const cage::LengthModel model = cage::readLengthModel(options.lengthModel);
+    PIXELCLOTH_CHECK(std::abs(model.markerSpacing - options.markers.spacing) < 1e-9,
+                     options.lengthModel << ": fitted for markers " << model.markerSpacing << " m apart, these are "
+                                         << options.markers.spacing
+                                         << " m apart; fit one at this spacing (reconstruct --dataset with "
+                                            "--length-model fit writes length_model.json)");
+    reconstructor.setLengthModel(model, options.lengthModel);
+    lengthModelJson = {{"source", fs::absolute(options.lengthModel).string()}, {"samples", model.samples}};
+  }
   const std::vector<int>& cageVertices = reconstructor.solver().cageVertices();
   const std::vector<ReconstructionMethod> methods = allReconstructionMethods();
   const int V = garment.mesh.numVertices(), M = static_cast<int>(methods.size());
@@ -322,6 +357,7 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
       {"rest_lengths", cage::restLengthsName(options.reconstruction.spline.restLengths)},
       {"anisotropic",
        {{"theta", options.reconstruction.anisotropic.theta}, {"ratio", options.reconstruction.anisotropic.ratio}}},
+      {"length_model", lengthModelJson},
       {"spline_mean_iterations", spline[0] / n},
       {"spline_max_segment_length_error", spline[1]},
       {"seconds", seconds},
@@ -350,6 +386,8 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
   }
   core::writePng(out / "error_maps.png", sheet);
   cage::writeMarkers(out / "markers.json", definition);
+  if (reconstructor.solver().lengthModel())
+    cage::writeLengthModel(out / "length_model.json", *reconstructor.solver().lengthModel());
   core::writeJson(out / "metrics.json", report.metrics);
   PIXELCLOTH_INFO("reconstruct: " << report.samples << " samples of " << datasetFolder.string() << " (" << options.split
                                   << ") in " << seconds << " s -> " << out.string());

@@ -1087,6 +1087,14 @@ TEST_F(CliReconstructTest, DatasetFormWritesMetricsForEveryMethodAndTheSplineBea
             metrics["methods"]["linear"]["cage_cm"].get<double>());
   EXPECT_TRUE(isPng(out / "error_maps.png"));
   EXPECT_TRUE(fs::is_regular_file(out / "markers.json"));
+  // The spline's length model, fitted on the training split (these garments are bent without stretch: worn lengths
+  // near the rest lengths).
+  ASSERT_TRUE(metrics["length_model"].is_object()) << metrics.dump(2);
+  EXPECT_GT(metrics["length_model"]["samples"].get<int>(), 0);
+  const nlohmann::json model = nlohmann::json::parse(readFile(out / "length_model.json"));
+  EXPECT_EQ(model["garment"], "necktie");
+  EXPECT_DOUBLE_EQ(model["marker_spacing_m"].get<double>(), 0.08);
+  EXPECT_TRUE(model["curves"].contains("outline"));
   EXPECT_EQ(core::readMesh(out / "sample_000000" / "spline.obj").numVertices(), tie_.mesh.numVertices());
   EXPECT_TRUE(fs::is_regular_file(out / "sample_000000" / "truth.obj"));
 
@@ -1097,6 +1105,18 @@ TEST_F(CliReconstructTest, DatasetFormWritesMetricsForEveryMethodAndTheSplineBea
   const nlohmann::json captured = nlohmann::json::parse(readFile(work_ / "noisy" / "metrics.json"));
   EXPECT_DOUBLE_EQ(captured["noise_cm"].get<double>(), 0.3);
   EXPECT_LT(captured["methods"]["spline"]["garment_cm"].get<double>(), 2.0) << captured.dump(2);
+
+  // The model from the first run serves another run at its spacing, and is refused at another.
+  const CliRun reused =
+      pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--spacing", "0.08", "--length-model",
+                  (out / "length_model.json").string(), "--out", (work_ / "reused").string(), "--quiet"});
+  ASSERT_EQ(reused.status, 0) << reused;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(readFile(work_ / "reused" / "metrics.json"))["methods"]["spline"]["cage_cm"],
+                   metrics["methods"]["spline"]["cage_cm"].get<double>());
+  EXPECT_TRUE(refused(pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--length-model",
+                                  (out / "length_model.json").string(), "--out", (work_ / "spacing").string()}),
+                      {"length_model.json", "0.08 m apart"}));
+  EXPECT_TRUE(filesUnder(work_ / "spacing").empty());
 }
 
 TEST_F(CliReconstructTest, MarkersFormRebuildsOneSampleFromItsMarkers) {
@@ -1114,6 +1134,17 @@ TEST_F(CliReconstructTest, MarkersFormRebuildsOneSampleFromItsMarkers) {
   ASSERT_EQ(rebuilt.numVertices(), truth.numVertices());
   EXPECT_LT((rebuilt.V - truth.V).rowwise().norm().mean(), 0.01);
   EXPECT_TRUE(rebuilt.hasUV());
+
+  // With the length model a dataset run fitted (markers at the default spacing, as `markers` placed them).
+  run = pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--meshes", "0", "--out",
+                    (work_ / "fit").string(), "--quiet"});
+  ASSERT_EQ(run.status, 0) << run;
+  const fs::path withModel = work_ / "tie_model.obj";
+  run = pixelcloth({"reconstruct", "--markers", markers.string(), "--pose", pose.string(), "--dressing",
+                    (work_ / "dressing").string(), "--length-model", (work_ / "fit" / "length_model.json").string(),
+                    "--out", withModel.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_LT((core::readMesh(withModel).V - truth.V).rowwise().norm().mean(), 0.01);
 }
 
 TEST_F(CliReconstructTest, RefusesBadInputsNamingTheFileAndWritesNothing) {
@@ -1154,6 +1185,19 @@ TEST_F(CliReconstructTest, RefusesBadInputsNamingTheFileAndWritesNothing) {
   writeFile(work_ / "skirt.json", edited.dump());
   EXPECT_TRUE(refused(reconstruct(work_ / "skirt.json", work_ / "d.obj"), {"skirt.json", "skirt"}));
   EXPECT_FALSE(fs::exists(work_ / "d.obj"));
+
+  // A length model that is cut short, or for another garment.
+  auto withModel = [&](const fs::path& model, const fs::path& out) {
+    return pixelcloth({"reconstruct", "--markers", markers.string(), "--pose", pose.string(), "--dressing", dressing,
+                       "--length-model", model.string(), "--out", out.string()});
+  };
+  writeFile(work_ / "cut_model.json", R"({"format": "pixelcloth.length_model", "garment": "necktie", "cur)");
+  EXPECT_TRUE(refused(withModel(work_ / "cut_model.json", work_ / "f.obj"), {"cut_model.json"}));
+  writeFile(work_ / "shirt_model.json",
+            R"({"format": "pixelcloth.length_model", "garment": "tshirt", "marker_spacing_m": 0.1,
+                "smoothing_passes": 2, "samples": 1, "curves": {"chest": {"intercept": 1, "slope": 0}}})");
+  EXPECT_TRUE(refused(withModel(work_ / "shirt_model.json", work_ / "g.obj"), {"shirt_model.json", "tshirt"}));
+  EXPECT_FALSE(fs::exists(work_ / "f.obj") || fs::exists(work_ / "g.obj"));
 
   // T-shirt markers for a necktie dressing: the embedding does not fit.
   ASSERT_EQ(pixelcloth({"markers", "--garment", "tshirt", "--out", (work_ / "shirt_def.json").string()}).status, 0);

@@ -2,11 +2,13 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "pixelcloth/cage/cage.h"
 #include "pixelcloth/cage/geodesic.h"
+#include "pixelcloth/cage/length_model.h"
 #include "pixelcloth/cage/markers.h"
 #include "pixelcloth/core/garment.h"
 
@@ -96,6 +98,9 @@ struct CageFit {
 /// precomputed once, then `solve` per frame. Each curve is solved on its own with the junction markers as shared,
 /// fixed points (so curves meeting at a junction meet there: C0 across curves, C1 along each). Every cage vertex is
 /// placed at its rest arc-length fraction between the two markers around it, along the fitted curve.
+///
+/// With a LengthModel (setLengthModel), the spline's segments are held to the lengths it predicts from their markers,
+/// in both directions, instead of at least their rest lengths.
 class CageSplineSolver {
  public:
   /// `restPositions` (#V x 3, e.g. the dressed garment) is used for RestLengths::Polyline and Geodesic and may be
@@ -110,6 +115,16 @@ class CageSplineSolver {
   /// one of its ends or a closed curve has fewer than 3.
   CageFit solve(const MarkerSet& markers) const;
   CageFit solve(const MarkerSet& markers, CurveMethod method) const;
+
+  /// Fits a LengthModel on worn garments: each sample (#V x 3 positions, e.g. a dataset's training split) gives every
+  /// curve's segments between the markers of `definition`, their chords and smoothed lengths. `markerSpacing` is
+  /// recorded in the model (the spacing `definition` was made with). Throws InputError for no samples or wrong sizes.
+  LengthModel fitLengthModel(const MarkerSet& definition, const std::vector<Eigen::MatrixX3d>& samples,
+                             double markerSpacing, const LengthModelOptions& options = {}) const;
+  /// Uses `model` for every later Spline solve (validated against the garment and cage: InputError naming `context`);
+  /// std::nullopt goes back to rest lengths.
+  void setLengthModel(std::optional<LengthModel> model, const std::string& context = "length model");
+  const std::optional<LengthModel>& lengthModel() const;
 
   /// The cage vertices, sorted (every vertex of every curve).
   const std::vector<int>& cageVertices() const;

@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "pixelcloth/cage/length_model.h"
 #include "pixelcloth/cage/markers.h"
 #include "pixelcloth/cage/spline_solver.h"
 #include "pixelcloth/core/body.h"
@@ -39,6 +41,9 @@ struct ReconstructionOptions {
   /// u beat v at every ratio tried (0.3-0.8), and 0.6 was the best ratio (garment error 1.09 cm, isotropic 1.11,
   /// v at 0.3 1.26).
   patches::BasisOptions anisotropic{true, 0.0, 0.6};
+  /// The worn lengths the spline's segments are held to (cage/length_model.h), e.g. fitted on a dataset's training
+  /// split; none: at least their rest lengths.
+  std::optional<cage::LengthModel> lengthModel;
   void validate() const;
 };
 
@@ -72,6 +77,8 @@ class GarmentReconstructor {
   /// positions.
   Reconstruction fillFromCage(const Eigen::MatrixX3d& cagePositions, const core::EmbeddedFrames& frames,
                               bool anisotropic) const;
+  /// Replaces ReconstructionOptions::lengthModel (InputError naming `context` when it does not fit the garment).
+  void setLengthModel(std::optional<cage::LengthModel> model, const std::string& context = "length model");
   /// The frames of the embedding on the body posed by `pose`.
   core::EmbeddedFrames frames(const core::Pose& pose) const;
 
@@ -91,6 +98,11 @@ struct DatasetReconstructionOptions {
   cage::CaptureOptions capture;  ///< noise (metres) and dropout of the markers, seeded per sample
   ReconstructionOptions reconstruction;
   int meshes = 3;  ///< the first this many samples are written as OBJ (truth and each method)
+  /// The spline's length model: "fit" (on the dataset's training split, written to length_model.json; with no
+  /// training samples, none), "none" (rest lengths), or a length model file (from an earlier run). Overrides
+  /// reconstruction.lengthModel.
+  std::string lengthModel = "fit";
+  cage::LengthModelOptions lengthModelFit;
   bool quiet = false;
   void validate() const;
 };
@@ -108,7 +120,8 @@ struct DatasetReconstructionReport {
 };
 
 /// Reconstructs every sample of one split of a finished dataset folder from markers taken from its ground truth, by
-/// every method, and writes into `out`: metrics.json, markers.json (the marker definition), error_maps.png (mean
+/// every method, and writes into `out`: metrics.json, markers.json (the marker definition), length_model.json (when one
+/// is used), error_maps.png (mean
 /// per-vertex error of each method in pattern space), and OBJs of the first few samples (sample_NNNNNN/truth.obj,
 /// <method>.obj). Progress on stderr unless quiet. Throws InputError for a bad folder, an empty split or options.
 DatasetReconstructionReport reconstructDataset(const std::filesystem::path& dataset, const std::filesystem::path& out,

@@ -88,8 +88,14 @@ void runBench(int repeats) {
     for (int v = 0; v < worn.rows(); ++v)
       worn.row(v) += Eigen::RowVector3d(0.02 * std::sin(4 * worn(v, 1)), 0.01 * std::cos(3 * worn(v, 0)), 0.0);
     const cage::MarkerSet markers = cage::placeMarkers(cage::defineMarkers(shirt, shirtCage), worn);
-    const cage::CageSplineSolver solver(shirt, shirtCage, shirt.mesh.V);
+    cage::CageSplineSolver solver(shirt, shirtCage, shirt.mesh.V);
     emit("cage.spline_all_curves", 1e3 * medianSeconds(repeats * 4, [&] { solver.solve(markers); }), "ms", 1.0);
+    // The same with worn lengths from a length model (what reconstruct --dataset uses), fitted on scaled copies.
+    std::vector<Eigen::MatrixX3d> training;
+    for (double scale : {0.95, 1.0, 1.05}) training.push_back(scale * worn);
+    solver.setLengthModel(solver.fitLengthModel(cage::defineMarkers(shirt, shirtCage), training, 0.1));
+    emit("cage.spline_all_curves_learned_lengths", 1e3 * medianSeconds(repeats * 4, [&] { solver.solve(markers); }),
+         "ms", 1.0);
   }
 
   // Dressing (issue 4): the ~3K-vertex T-shirt on the ~14K-vertex mannequin, cages given.

@@ -764,7 +764,8 @@ TEST_F(CliTest, BenchPrintsOnlyJsonLines) {
 
 TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
   fs::path out = dir("out") / "report";
-  CliRun run = pixelcloth({"demo", "--out", out.string(), "--poses", "2", "--filter-poses", "16"});
+  CliRun run =
+      pixelcloth({"demo", "--out", out.string(), "--poses", "2", "--filter-poses", "16", "--tshirt-samples", "10"});
   ASSERT_EQ(run.status, 0) << run;
   ASSERT_TRUE(fs::is_regular_file(out / "index.html")) << listing(filesUnder(out));
   EXPECT_NO_THROW(nlohmann::json::parse(readFile(out / "report.json")));

@@ -20,8 +20,9 @@ namespace pixelcloth::cage {
 ///    (p[k+1] - p[k-1]) / (L[k-1] + L[k]) (a non-uniform Catmull-Rom with the rest lengths as knot spacing; at the ends
 ///    of an open curve the parabola through the first (last) three markers); no length term (baseline).
 ///  - Spline: the same Hermite spline with the tangents solved (Ceres, autodiff) so each segment's arc length matches
-///    its rest length (by default at least its rest length: cloth stretches), with a bending term and a prior towards
-///    the Catmull-Rom tangents (DESIGN.md, "Key-point-to-cage spline solver"); starts from CatmullRom.
+///    its target: the worn length a LengthModel predicts (CageSplineSolver::setLengthModel), or without one at least
+///    its rest length (cloth stretches); with a bending term and a prior towards the Catmull-Rom tangents (DESIGN.md,
+///    "Key-point-to-cage spline solver"); starts from CatmullRom.
 enum class CurveMethod { Linear, CatmullRom, Spline };
 
 /// "linear", "catmull_rom", "spline".

@@ -325,11 +325,7 @@ void runDemo(const DemoArgs& args) {
     preview.range = 0.05f;
     std::vector<RgbImage> row;
     for (int r = 0; r < std::min(3, dataset.rows()); ++r) {
-      Eigen::VectorXf pose90 = Eigen::VectorXf::Zero(90);
-      pose90.head(dataset.pose(r).size()) = dataset.pose(r);
-      for (int j = static_cast<int>(dataset.pose(r).size()) / 9; j < 10; ++j)
-        pose90.segment(9 * j, 9) << 1, 0, 0, 0, 1, 0, 0, 0, 1;
-      const Pose pose = Pose::fromVector(pose90, "demo pose");
+      const Pose pose = Pose::fromLeading(dataset.pose(r), "demo pose");
       Body posed = body;
       posed.mesh = body.posedMesh(pose);
       Garment draped = garment;
@@ -373,10 +369,8 @@ void runDemo(const DemoArgs& args) {
     for (int r : shown) {
       std::ostringstream sample;
       sample << "sample_" << std::setw(6) << std::setfill('0') << dataset.info.settings.first() + r;
-      Eigen::VectorXf pose90 = Pose::identity().toVector();
-      pose90.head(dataset.pose(r).size()) = dataset.pose(r);
       Body posed = body;
-      posed.mesh = body.posedMesh(Pose::fromVector(pose90, "demo pose"));
+      posed.mesh = body.posedMesh(Pose::fromLeading(dataset.pose(r), "demo pose"));
       std::vector<RgbImage> row;
       for (const char* name : {"truth", "spline", "linear"}) {
         Garment g = shirt;

@@ -62,9 +62,7 @@ void runMarkers(const MarkersArgs& args) {
   const cage::MarkerSet definition = cage::defineMarkers(garment, cage::garmentCage(garment), options);
   const cage::MarkerSet markers = cage::placeMarkers(definition, dataset.positionsOf(row).cast<double>(), capture);
   if (!args.poseOut.empty()) {
-    Eigen::VectorXf full = core::Pose::identity().toVector();
-    full.head(dataset.pose(row).size()) = dataset.pose(row);
-    core::writeJson(args.poseOut, core::poseToJson(core::Pose::fromVector(full, args.dataset)));
+    core::writeJson(args.poseOut, core::poseToJson(core::Pose::fromLeading(dataset.pose(row), args.dataset)));
   }
   cage::writeMarkers(args.out, markers);
   PIXELCLOTH_INFO("markers: " << markers.markers.size() << " markers of sample " << args.sample << " -> " << args.out);

@@ -149,6 +149,15 @@ Pose Pose::fromVector(const Eigen::Ref<const Eigen::VectorXf>& values, const std
   return pose;
 }
 
+Pose Pose::fromLeading(const Eigen::Ref<const Eigen::VectorXf>& values, const std::string& context) {
+  PIXELCLOTH_CHECK(
+      values.size() % 9 == 0 && values.size() <= kPoseSize,
+      context << ": a pose has 9 numbers per joint for up to 10 joints (" << kPoseSize << "), found " << values.size());
+  Eigen::VectorXf full = identity().toVector();
+  full.head(values.size()) = values;
+  return fromVector(full, context);
+}
+
 Pose Pose::fromEulerDegrees(const Eigen::Matrix<double, 10, 3>& degrees) {
   Pose pose;
   for (int k = 0; k < 10; ++k) pose.rotations[k] = rotationFromEulerXZY(degrees.row(k).transpose());

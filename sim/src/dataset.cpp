@@ -553,9 +553,7 @@ void DatasetWriter::add(int index, const Sample& sample) {
                                                                       << "); count it with countRejection instead");
   PIXELCLOTH_CHECK(sample.pose.size() == s.poseSize,
                    context << ": pose has " << sample.pose.size() << " floats, expected " << s.poseSize);
-  Eigen::VectorXf full = core::Pose::identity().toVector();
-  full.head(s.poseSize) = sample.pose;
-  core::Pose::fromVector(full, context + ": pose");
+  core::Pose::fromLeading(sample.pose, context + ": pose");
   PIXELCLOTH_CHECK(sample.positions.rows() == s.vertexCount && sample.offsets.rows() == s.vertexCount,
                    context << ": positions have " << sample.positions.rows() << " rows and offsets "
                            << sample.offsets.rows() << ", expected " << s.vertexCount);

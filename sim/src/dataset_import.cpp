@@ -48,9 +48,7 @@ bool naturalLess(const std::string& a, const std::string& b) {
 
 /// A pose vector of `poseSize` floats checked to be rotations (the rest of the 90 at identity).
 Eigen::VectorXf checkedPose(const Eigen::VectorXf& values, int poseSize, const std::string& context) {
-  Eigen::VectorXf full = core::Pose::identity().toVector();
-  full.head(values.size()) = values;
-  core::Pose::fromVector(full, context);
+  core::Pose::fromLeading(values, context);
   return values.head(poseSize);
 }
 
@@ -218,9 +216,7 @@ DatasetSettings importDataset(const std::vector<fs::path>& objs, const fs::path&
   core::Progress progress("dataset import", static_cast<std::int64_t>(pending.size()));
   for (int i : pending) {
     const Eigen::MatrixX3d positions = readFrame(i);
-    Eigen::VectorXf full = core::Pose::identity().toVector();
-    full.head(settings.poseSize) = poses[i];
-    const core::Pose pose = core::Pose::fromVector(full, posesFile.string());
+    const core::Pose pose = core::Pose::fromLeading(poses[i].head(settings.poseSize), posesFile.string());
     const core::EmbeddedFrames frames = core::embeddedFrames(body.posedVertices(pose), body.mesh.F, embedding);
     Sample sample;
     sample.pose = poses[i];

@@ -227,9 +227,8 @@ DatasetCheckReport checkDataset(const fs::path& folder, const DatasetCheckOption
       readAt(in, path, header->dataOffset + r * rowLength * 4, buffer.data(), rowLength * 4);
       checkFinite(buffer.data(), rowLength, path.string(), r * rowLength, rowLength);
       if (name == std::string(kPoses)) {
-        Eigen::VectorXf full = core::Pose::identity().toVector();
-        full.head(s.poseSize) = Eigen::Map<const Eigen::VectorXf>(buffer.data(), s.poseSize);
-        core::Pose::fromVector(full, path.string() + ": row " + std::to_string(r));
+        core::Pose::fromLeading(Eigen::Map<const Eigen::VectorXf>(buffer.data(), s.poseSize),
+                                path.string() + ": row " + std::to_string(r));
       }
       progress.advance();
     }
@@ -270,13 +269,13 @@ DatasetCheckReport checkDataset(const fs::path& folder, const DatasetCheckOption
     const int n = static_cast<int>(std::min<std::int64_t>(options.strongSamples, rows));
     for (int k = 0; k < n; ++k) {
       const std::int64_t r = n == 1 ? 0 : k * (rows - 1) / (n - 1);
-      Eigen::VectorXf pose = core::Pose::identity().toVector();
+      Eigen::VectorXf pose(s.poseSize);
       readAt(posesIn, folder / kPoses, posesHeader.dataOffset + r * s.poseSize * 4, pose.data(), s.poseSize * 4);
       using RowMatrix = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
       RowMatrix positions(V, 3), offsets(V, 3);
       readAt(positionsIn, folder / kPositions, positionsHeader.dataOffset + r * V * 12, positions.data(), V * 12);
       readAt(offsetsIn, folder / kOffsets, offsetsHeader.dataOffset + r * V * 12, offsets.data(), V * 12);
-      const core::Pose posed = core::Pose::fromVector(pose, (folder / kPoses).string());
+      const core::Pose posed = core::Pose::fromLeading(pose, (folder / kPoses).string());
       const core::EmbeddedFrames frames = core::embeddedFrames(body.posedVertices(posed), body.mesh.F, embedding);
       const Eigen::MatrixX3d recomputed = core::offsetsFromPositions(frames, positions.cast<double>());
       Eigen::Index worst = 0;

@@ -207,10 +207,7 @@ core::RgbImage renderPatternValues(const core::Garment& garment, const Eigen::Ve
 
 namespace {
 core::Pose poseOfRow(const Dataset& dataset, int row) {
-  Eigen::VectorXf full = core::Pose::identity().toVector();
-  const Eigen::VectorXf pose = dataset.pose(row);
-  full.head(pose.size()) = pose;
-  return core::Pose::fromVector(full, dataset.info.folder.string() + ": pose " + std::to_string(row));
+  return core::Pose::fromLeading(dataset.pose(row), dataset.info.folder.string() + ": pose " + std::to_string(row));
 }
 
 std::string sampleFolder(int index) {

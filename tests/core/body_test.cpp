@@ -233,6 +233,24 @@ TEST(Pose, BadVectorsAreRefused) {
   EXPECT_THROW(pc::Pose::fromVector(scaled), pc::InputError);
 }
 
+TEST(Pose, LeadingJointsGiveTheRestAtIdentity) {
+  // A necktie dataset's 36 floats: the first four joints; the arms stay at rest.
+  pc::Pose bent = pc::Pose::identity();
+  bent.rotations[1] = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const pc::Pose back = pc::Pose::fromLeading(bent.toVector().head(36), "poses.npy");
+  EXPECT_TRUE(back.rotations[1].isApprox(bent.rotations[1], 1e-6));
+  for (int k = 4; k < 10; ++k) EXPECT_TRUE(back.rotations[k].isIdentity(1e-12)) << k;
+  EXPECT_TRUE(pc::Pose::fromLeading(Eigen::VectorXf(0)).rotations[0].isIdentity(1e-12));
+  // Not whole joints, too many, not rotations: refused with the context.
+  for (int size : {35, 99}) {
+    const Eigen::VectorXf odd = Eigen::VectorXf::Zero(size);
+    EXPECT_NE(pixelcloth::testing::inputErrorOf([&] { pc::Pose::fromLeading(odd, "poses.npy"); }).find("poses.npy"),
+              std::string::npos)
+        << size;
+  }
+  EXPECT_THROW(pc::Pose::fromLeading(Eigen::VectorXf::Zero(36)), pc::InputError);
+}
+
 TEST(JointLimits, EveryPosableJointHasSourcedLimitsAndTheRightMirrorsTheLeft) {
   for (const auto& name : pc::kPoseJoints) {
     const pc::JointLimits& l = pc::jointLimits(name);

@@ -66,6 +66,9 @@ struct Pose {
   /// From 90 floats (10 row-major 3x3); checks finiteness and that each block is a rotation
   /// (orthonormal within 1e-3, determinant +1). `context` prefixes error messages.
   static Pose fromVector(const Eigen::Ref<const Eigen::VectorXf>& values, const std::string& context = "pose");
+  /// From the leading 9 k floats (the first k joints, 0 <= k <= 10: a necktie dataset stores 36, the spine and
+  /// neck), every later joint at identity; checked as fromVector.
+  static Pose fromLeading(const Eigen::Ref<const Eigen::VectorXf>& values, const std::string& context = "pose");
   /// From Euler angles (degrees, x y z per joint; 10 x 3), composed as rotationFromEulerXZY.
   static Pose fromEulerDegrees(const Eigen::Matrix<double, 10, 3>& degrees);
   Eigen::VectorXf toVector() const;  ///< 90 floats

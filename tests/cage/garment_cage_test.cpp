@@ -7,17 +7,14 @@
 #include <map>
 #include <set>
 
-#include "../core/fixtures.h"
+#include "cage_fixtures.h"
 
 namespace pcg = pixelcloth::cage;
 namespace pc = pixelcloth::core;
 
 namespace {
 const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
-const pcg::Cage& shirtCage() {
-  static const pcg::Cage cage = pcg::garmentCage(shirt());
-  return cage;
-}
+const pcg::Cage& shirtCage() { return pixelcloth::testing::tshirtCage(); }
 
 std::set<std::pair<int, int>> meshEdges(const Eigen::MatrixX3i& F) {
   std::set<std::pair<int, int>> edges;

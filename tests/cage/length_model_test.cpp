@@ -6,8 +6,8 @@
 
 #include <fstream>
 
-#include "../core/fixtures.h"
 #include "../core/test_util.h"
+#include "cage_fixtures.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/cage/geodesic.h"
 #include "pixelcloth/cage/spline_solver.h"
@@ -18,10 +18,7 @@ using pixelcloth::testing::inputErrorOf;
 
 namespace {
 const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
-const pcg::Cage& shirtCage() {
-  static const pcg::Cage cage = pcg::garmentCage(shirt());
-  return cage;
-}
+const pcg::Cage& shirtCage() { return pixelcloth::testing::tshirtCage(); }
 
 /// The template shirt (3D, whose curves are not at their pattern lengths) scaled about its centre.
 Eigen::MatrixX3d scaled(double scale) {

@@ -9,8 +9,8 @@
 #include <functional>
 #include <set>
 
-#include "../core/fixtures.h"
 #include "../core/test_util.h"
+#include "cage_fixtures.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/cage/geodesic.h"
 #include "pixelcloth/core/json_io.h"
@@ -20,10 +20,7 @@ using pixelcloth::testing::inputErrorOf;
 
 namespace {
 const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
-const pcg::Cage& shirtCage() {
-  static const pcg::Cage cage = pcg::garmentCage(shirt());
-  return cage;
-}
+const pcg::Cage& shirtCage() { return pixelcloth::testing::tshirtCage(); }
 void writeText(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
 }  // namespace
 

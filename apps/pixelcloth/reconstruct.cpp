@@ -76,6 +76,7 @@ struct ReconstructArgs {
   std::string restLengths = "pattern";
   std::string lengthModel;  // markers form: none by default; dataset form: "fit" by default
   double anisoThetaDegrees = 0, anisoRatio = 0.6;
+  double bodyClearance = 0.001;
   cage::SplineOptions spline;
   bool quiet = false;
 };
@@ -88,6 +89,7 @@ void runFromMarkers(const ReconstructArgs& args) {
   sim::ReconstructionOptions options;
   options.spline = args.spline;
   options.spline.restLengths = cage::restLengthsFromName(args.restLengths, "reconstruct --rest-lengths");
+  options.bodyClearance = args.bodyClearance;
   // Every input is read and checked before the expensive steps (body, dressing), nothing is written before the end.
   const cage::MarkerSet markers = cage::readMarkers(args.markers);
   PIXELCLOTH_CHECK(args.lengthModel != "fit",
@@ -140,6 +142,7 @@ void runFromDataset(const ReconstructArgs& args) {
   options.lengthModel = args.lengthModel.empty() ? "fit" : args.lengthModel;
   options.reconstruction.anisotropic.theta = args.anisoThetaDegrees * M_PI / 180;
   options.reconstruction.anisotropic.ratio = args.anisoRatio;
+  options.reconstruction.bodyClearance = args.bodyClearance;
   options.meshes = args.meshes;
   options.quiet = args.quiet;
   const sim::DatasetReconstructionReport report = sim::reconstructDataset(args.dataset, args.out, options);
@@ -218,6 +221,9 @@ void registerReconstruct(CLI::App& app) {
                    "spline_anisotropic: pattern-space direction of faster diffusion, degrees (0 = u, 90 = v)")
       ->capture_default_str();
   verb->add_option("--aniso-ratio", args->anisoRatio, "spline_anisotropic: diffusion across / along, in (0, 1]")
+      ->capture_default_str();
+  verb->add_option("--body-clearance", args->bodyClearance,
+                   "Rebuilt vertices nearer the body than this (metres) are moved out to it; negative: never")
       ->capture_default_str();
   verb->add_option("--out", args->out, "garment.obj (markers form) or output folder (dataset form)")->required();
   verb->add_flag("--quiet", args->quiet, "No progress on stderr");

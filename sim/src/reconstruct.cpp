@@ -2,6 +2,11 @@
 // evaluation of every method on a dataset split.
 #include "pixelcloth/sim/reconstruct.h"
 
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,6 +19,7 @@
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/core/render.h"
@@ -55,6 +61,76 @@ ReconstructionMethod reconstructionMethodFromName(const std::string& name, const
 void ReconstructionOptions::validate() const {
   spline.validate();
   anisotropic.validate();
+  PIXELCLOTH_CHECK(std::isfinite(bodyClearance) && bodyClearance <= 0.05,
+                   "reconstruct: body clearance " << bodyClearance << " m, expected at most 0.05 (< 0: off)");
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// PosedBody
+
+namespace {
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point = Kernel::Point_3;
+using Triangle = Kernel::Triangle_3;
+using TriangleIterator = std::vector<Triangle>::const_iterator;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>>>;
+}  // namespace
+
+struct PosedBody::Impl {
+  Eigen::MatrixX3d V, vertexNormals;
+  Eigen::MatrixX3i F;
+  core::EmbeddedFrames frames;
+  std::vector<Triangle> triangles;
+  std::unique_ptr<Tree> tree;
+};
+
+PosedBody::PosedBody(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, core::EmbeddedFrames frames)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->V = vertices;
+  impl_->F = faces;
+  impl_->vertexNormals = core::vertexNormals(vertices, faces);
+  impl_->frames = std::move(frames);
+  impl_->triangles.reserve(faces.rows());
+  auto point = [&](int v) { return Point(vertices(v, 0), vertices(v, 1), vertices(v, 2)); };
+  for (int f = 0; f < faces.rows(); ++f)
+    impl_->triangles.emplace_back(point(faces(f, 0)), point(faces(f, 1)), point(faces(f, 2)));
+  impl_->tree = std::make_unique<Tree>(impl_->triangles.cbegin(), impl_->triangles.cend());
+  impl_->tree->accelerate_distance_queries();
+}
+
+PosedBody::~PosedBody() = default;
+PosedBody::PosedBody(PosedBody&&) noexcept = default;
+
+const core::EmbeddedFrames& PosedBody::frames() const { return impl_->frames; }
+
+int PosedBody::pushOut(Eigen::MatrixX3d& points, double clearance) const {
+  int moved = 0;
+  for (int i = 0; i < points.rows(); ++i) {
+    const Eigen::Vector3d p = points.row(i).transpose();
+    const auto [closest, triangle] = impl_->tree->closest_point_and_primitive(Point(p.x(), p.y(), p.z()));
+    const int f = static_cast<int>(triangle - impl_->triangles.cbegin());
+    const Eigen::Vector3d q(closest.x(), closest.y(), closest.z());
+    // The smooth normal there: the vertex normals blended by the closest point's barycentric coordinates.
+    const Eigen::Vector3d a = impl_->V.row(impl_->F(f, 0)), b = impl_->V.row(impl_->F(f, 1)),
+                          c = impl_->V.row(impl_->F(f, 2));
+    const double area = (b - a).cross(c - a).norm();
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d u = impl_->V.row(impl_->F(f, (k + 1) % 3)), w = impl_->V.row(impl_->F(f, (k + 2) % 3));
+      const double weight = area > 0 ? (u - q).cross(w - q).norm() / area : 1.0 / 3;
+      normal += weight * impl_->vertexNormals.row(impl_->F(f, k)).transpose();
+    }
+    normal.normalize();
+    // Inside when behind the smooth normal; outside, the clearance is measured from the closest point outwards.
+    const Eigen::Vector3d away = p - q;
+    const bool inside = away.dot(normal) < 0;
+    if (inside || away.norm() < clearance) {
+      const Eigen::Vector3d direction = inside || away.norm() < 1e-12 ? normal : Eigen::Vector3d(away.normalized());
+      points.row(i) = (q + clearance * direction).transpose();
+      ++moved;
+    }
+  }
+  return moved;
 }
 
 void DatasetReconstructionOptions::validate() const {
@@ -134,12 +210,14 @@ const core::Garment& GarmentReconstructor::garment() const { return impl_->garme
 const cage::Cage& GarmentReconstructor::cage() const { return impl_->cage; }
 const cage::CageSplineSolver& GarmentReconstructor::solver() const { return *impl_->solver; }
 
-core::EmbeddedFrames GarmentReconstructor::frames(const core::Pose& pose) const {
-  return core::embeddedFrames(impl_->body.posedVertices(pose), impl_->body.mesh.F, impl_->embedding);
+PosedBody GarmentReconstructor::posed(const core::Pose& pose) const {
+  const Eigen::MatrixX3d vertices = impl_->body.posedVertices(pose);
+  return PosedBody(vertices, impl_->body.mesh.F, core::embeddedFrames(vertices, impl_->body.mesh.F, impl_->embedding));
 }
 
-Reconstruction GarmentReconstructor::fillFromCage(const Eigen::MatrixX3d& cagePositions,
-                                                  const core::EmbeddedFrames& frames, bool anisotropic) const {
+Reconstruction GarmentReconstructor::fillFromCage(const Eigen::MatrixX3d& cagePositions, const PosedBody& body,
+                                                  bool anisotropic) const {
+  const core::EmbeddedFrames& frames = body.frames();
   const int V = impl_->garment.mesh.numVertices();
   PIXELCLOTH_CHECK(cagePositions.rows() == V && frames.origin.rows() == V,
                    "reconstruct: " << cagePositions.rows() << " cage positions and " << frames.origin.rows()
@@ -152,13 +230,17 @@ Reconstruction GarmentReconstructor::fillFromCage(const Eigen::MatrixX3d& cagePo
   const Eigen::MatrixX3d cageOffsets = core::offsetsFromPositions(frames, known);
   result.offsets = impl_->fill(anisotropic).fill(cageOffsets);
   result.positions = core::positionsFromOffsets(frames, result.offsets);
+  if (impl_->options.bodyClearance >= 0) {
+    result.pushedOut = body.pushOut(result.positions, impl_->options.bodyClearance);
+    if (result.pushedOut > 0) result.offsets = core::offsetsFromPositions(frames, result.positions);
+  }
   return result;
 }
 
-Reconstruction GarmentReconstructor::reconstruct(const cage::MarkerSet& markers, const core::EmbeddedFrames& frames,
+Reconstruction GarmentReconstructor::reconstruct(const cage::MarkerSet& markers, const PosedBody& body,
                                                  ReconstructionMethod method) const {
   const cage::CageFit fit = impl_->solver->solve(markers, curveMethodOf(method));
-  Reconstruction result = fillFromCage(fit.positions, frames, method == ReconstructionMethod::SplineAnisotropic);
+  Reconstruction result = fillFromCage(fit.positions, body, method == ReconstructionMethod::SplineAnisotropic);
   result.spline = fit.summary;
   return result;
 }
@@ -166,7 +248,7 @@ Reconstruction GarmentReconstructor::reconstruct(const cage::MarkerSet& markers,
 Reconstruction GarmentReconstructor::reconstruct(const cage::MarkerSet& markers, const core::Pose& pose,
                                                  ReconstructionMethod method) const {
   markers.validate(impl_->garment, impl_->cage, "markers", true);
-  return reconstruct(markers, frames(pose), method);
+  return reconstruct(markers, posed(pose), method);
 }
 
 // ---------------------------------------------------------------------------------------------------------------------
@@ -268,7 +350,7 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
   const int V = garment.mesh.numVertices(), M = static_cast<int>(methods.size());
   const int C = static_cast<int>(cage.curves.size());
 
-  std::vector<double> cageSum(M, 0), garmentSum(M, 0), garmentMax(M, 0);
+  std::vector<double> cageSum(M, 0), garmentSum(M, 0), garmentMax(M, 0), pushedSum(M, 0);
   std::vector<std::vector<double>> curveSum(M, std::vector<double>(C, 0)), curveRel(M, std::vector<double>(C, 0)),
       curvePosition(M, std::vector<double>(C, 0));
   std::vector<Eigen::VectorXd> vertexSum(M, Eigen::VectorXd::Zero(V));
@@ -281,7 +363,7 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
     cage::CaptureOptions capture = options.capture;
     capture.seed = options.capture.seed * 1000003ULL + static_cast<std::uint64_t>(index);
     const cage::MarkerSet markers = cage::placeMarkers(definition, truth, capture);
-    const core::EmbeddedFrames frames = reconstructor.frames(poseOfRow(dataset, r));
+    const PosedBody posed = reconstructor.posed(poseOfRow(dataset, r));
     const bool writeMeshes = written < options.meshes;
     if (writeMeshes) {
       core::Mesh mesh = garment.mesh;
@@ -289,11 +371,12 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
       core::writeMesh(out / sampleFolder(index) / "truth.obj", mesh);
     }
     for (int m = 0; m < M; ++m) {
-      const Reconstruction rec = reconstructor.reconstruct(markers, frames, methods[m]);
+      const Reconstruction rec = reconstructor.reconstruct(markers, posed, methods[m]);
       const Eigen::VectorXd error = (rec.positions - truth).rowwise().norm();
       vertexSum[m] += error;
       garmentSum[m] += error.mean();
       garmentMax[m] = std::max(garmentMax[m], error.maxCoeff());
+      pushedSum[m] += static_cast<double>(rec.pushedOut) / V;
       double cageError = 0;
       for (int v : cageVertices) cageError += (rec.cage.row(v) - truth.row(v)).norm();
       cageSum[m] += cageError / cageVertices.size();
@@ -335,11 +418,10 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
                                      {"length_error_percent", 100 * curveRel[m][c] / n}};
       curveMean += 100 * curveSum[m][c] / n / C;
     }
-    methodsJson[reconstructionMethodName(methods[m])] = {{"cage_cm", 100 * cageSum[m] / n},
-                                                         {"garment_cm", 100 * garmentSum[m] / n},
-                                                         {"max_garment_cm", 100 * garmentMax[m]},
-                                                         {"curve_length_error_cm", curveMean},
-                                                         {"curves", curves}};
+    methodsJson[reconstructionMethodName(methods[m])] = {
+        {"cage_cm", 100 * cageSum[m] / n},       {"garment_cm", 100 * garmentSum[m] / n},
+        {"max_garment_cm", 100 * garmentMax[m]}, {"pushed_out_percent", 100 * pushedSum[m] / n},
+        {"curve_length_error_cm", curveMean},    {"curves", curves}};
     report.meanVertexError.push_back(vertexSum[m] / n);
   }
   report.metrics = {
@@ -355,6 +437,7 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
       {"anisotropic",
        {{"theta", options.reconstruction.anisotropic.theta}, {"ratio", options.reconstruction.anisotropic.ratio}}},
       {"length_model", lengthModelJson},
+      {"body_clearance_m", options.reconstruction.bodyClearance},
       {"spline_mean_iterations", spline[0] / n},
       {"spline_max_segment_length_error", spline[1]},
       {"seconds", seconds},

@@ -1083,6 +1083,7 @@ TEST_F(CliReconstructTest, DatasetFormWritesMetricsForEveryMethodAndTheSplineBea
     EXPECT_GE(cage, 0);
     EXPECT_LT(garment, 1.0) << "a bent tie rebuilt from markers 8 cm apart";
     EXPECT_TRUE(metrics["methods"][method]["curves"].contains("outline"));
+    EXPECT_GE(metrics["methods"][method]["pushed_out_percent"].get<double>(), 0);
   }
   EXPECT_LT(metrics["methods"]["spline"]["cage_cm"].get<double>(),
             metrics["methods"]["linear"]["cage_cm"].get<double>());
@@ -1205,7 +1206,11 @@ TEST_F(CliReconstructTest, RefusesBadInputsNamingTheFileAndWritesNothing) {
   EXPECT_TRUE(refused(reconstruct(work_ / "shirt_def.json", work_ / "e.obj"), {"shirt_def.json", "no position"}));
   EXPECT_FALSE(fs::exists(work_ / "e.obj"));
 
-  // Dataset form: an unknown split, a folder that is not a dataset.
+  // Dataset form: an unknown split, a folder that is not a dataset, a clearance of a metre.
+  EXPECT_TRUE(refused(pixelcloth({"reconstruct", "--dataset", data_.string(), "--body-clearance", "1", "--out",
+                                  (work_ / "r3").string()}),
+                      {"clearance"}));
+  EXPECT_TRUE(filesUnder(work_ / "r3").empty());
   EXPECT_TRUE(refused(pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "validation", "--out",
                                   (work_ / "r1").string()}),
                       {"validation"}));

@@ -48,6 +48,8 @@ struct ReconstructionOptions {
   /// closest surface point (metres; < 0: never). Nothing else keeps the filled interiors out of the body. Chosen on
   /// the regularisation split of a 200-sample T-shirt dataset (0, 1, 2, 3 mm: garment error of spline_anisotropic
   /// 0.921, 0.917, 0.922, 0.934 cm; 0.951 without); the simulated shirts have 0.5% of their vertices inside the body.
+  /// The whole body counts, not only a vertex's own collision part as in the simulator, so a sleeve that the
+  /// simulator let sink into the torso comes out of it here; a marker nearer the body than this moves too.
   double bodyClearance = 0.001;
   void validate() const;
 };

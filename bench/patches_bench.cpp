@@ -1,7 +1,7 @@
 // Micro benchmarks for patches/ (Google Benchmark): building and applying the blendshape bases.
 #include <benchmark/benchmark.h>
 
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/basis.h"
 
 namespace {
@@ -10,9 +10,9 @@ namespace pp = pixelcloth::patches;
 /// The built-in T-shirt cut along its armhole seams: 6 patches.
 const std::vector<pp::PatchMesh>& shirtPatches() {
   static const std::vector<pp::PatchMesh> meshes = [] {
-    pixelcloth::core::Garment shirt = pixelcloth::core::makeTShirt();
+    pixelcloth::garment::Garment shirt = pixelcloth::garment::makeTShirt();
     std::vector<std::pair<int, int>> cuts;
-    for (const pixelcloth::core::Seam& seam : shirt.seams)
+    for (const pixelcloth::garment::Seam& seam : shirt.seams)
       if (!seam.joinsLayouts)
         for (size_t i = 0; i + 1 < seam.vertices.size(); ++i) cuts.emplace_back(seam.vertices[i], seam.vertices[i + 1]);
     std::vector<pp::PatchMesh> out;

@@ -4,7 +4,7 @@
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
-#include "pixelcloth/patches/basis_figures.h"
+#include "pixelcloth/viz/basis_figures.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -12,19 +12,19 @@ namespace pixelcloth::apps {
 namespace {
 struct BasesArgs {
   std::string figures;
-  patches::BasisFigureOptions options;
+  viz::BasisFigureOptions options;
   double thetaDegrees = 30.0;
 };
 
 void runBases(const BasesArgs& args) {
-  patches::BasisFigureOptions options = args.options;
+  viz::BasisFigureOptions options = args.options;
   options.theta = args.thetaDegrees * 3.14159265358979323846 / 180.0;
   options.validate();
   core::checkOutputFolder(args.figures);
   core::ensureOutputFolder(args.figures);
   PIXELCLOTH_INFO("bases: " << options.side << " m square, " << options.cells << " x " << options.cells
                             << " cells; anisotropic theta " << args.thetaDegrees << " deg, ratio " << options.ratio);
-  std::vector<patches::BasisFigure> figures = patches::writeBasisFigures(args.figures, options);
+  std::vector<viz::BasisFigure> figures = viz::writeBasisFigures(args.figures, options);
   PIXELCLOTH_INFO("bases: " << figures.size() << " figures -> " << args.figures
                             << "/{<shape>_{iso,aniso}.png, <shape>_{iso,aniso}_3d.png, <shape>_{iso,aniso}.obj, "
                                "bases.png}; bases.png rows: one bump, two bumps, sine, S-curve; columns: isotropic "

@@ -16,8 +16,8 @@
 #include "pixelcloth/cage/markers.h"
 #include "pixelcloth/cage/spline_solver.h"
 #include "pixelcloth/core/atomic_file.h"
-#include "pixelcloth/core/body.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/body/body.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
@@ -26,12 +26,16 @@
 #include "pixelcloth/patches/raster.h"
 #include "pixelcloth/sim/garment_sim.h"
 #include "pixelcloth/sim/generate.h"
+#include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
 
 namespace {
 using namespace pixelcloth::core;
+using namespace pixelcloth::body;
+using namespace pixelcloth::garment;
+using namespace pixelcloth::viz;
 
 /// Median wall time of `repeats` runs of `work`, seconds.
 template <typename F>

@@ -1,5 +1,5 @@
 // pixelcloth body: the built-in mannequin or an imported body, with skeleton, weights and parts.
-#include "pixelcloth/core/body.h"
+#include "pixelcloth/body/body.h"
 
 #include <memory>
 
@@ -7,7 +7,7 @@
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
-#include "pixelcloth/core/previews.h"
+#include "pixelcloth/viz/previews.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -24,6 +24,9 @@ struct BodyArgs {
 
 void runBody(const BodyArgs& args) {
   using namespace pixelcloth::core;
+  using namespace pixelcloth::body;
+  using namespace pixelcloth::garment;
+  using namespace pixelcloth::viz;
   PIXELCLOTH_CHECK(args.importMesh.empty() == args.joints.empty(),
                    "body: --import MESH and --joints JSON go together (a mesh needs its joint positions)");
   PIXELCLOTH_CHECK(args.importMesh.empty() || args.shape == 0.0,

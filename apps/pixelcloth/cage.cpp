@@ -3,11 +3,12 @@
 
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/atomic_file.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/patches/patch.h"
-#include "pixelcloth/patches/patch_picture.h"
+#include "pixelcloth/viz/patch_picture.h"
+#include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -21,11 +22,11 @@ struct CageArgs {
 
 void runCage(const CageArgs& args) {
   core::checkOutputFolder(args.out);
-  writeCageFolder(args.garment == "tshirt" ? core::makeTShirt() : core::makeNecktie(), args.out, args.size);
+  writeCageFolder(args.garment == "tshirt" ? garment::makeTShirt() : garment::makeNecktie(), args.out, args.size);
 }
 }  // namespace
 
-void writeCageFolder(const core::Garment& garment, const std::filesystem::path& out, int size) {
+void writeCageFolder(const garment::Garment& garment, const std::filesystem::path& out, int size) {
   const cage::Cage cage = cage::garmentCage(garment);
   const std::vector<patches::Patch> patchList = patches::segmentPatches(garment, cage::cutEdges(cage));
 
@@ -46,10 +47,10 @@ void writeCageFolder(const core::Garment& garment, const std::filesystem::path& 
   }
   core::writeJson(out / "patches.json", {{"garment", garment.name}, {"image_size", size}, {"patches", list}});
 
-  std::vector<patches::PictureCurve> curves;
+  std::vector<viz::PictureCurve> curves;
   for (const cage::CageCurve& curve : cage.curves)
     curves.push_back({curve.vertices, curve.closed, cage::curveKindName(curve.kind)});
-  core::writePng(out / "cage.png", patches::renderPatches(garment, patchList, curves, size));
+  core::writePng(out / "cage.png", viz::renderPatches(garment, patchList, curves, size));
   PIXELCLOTH_INFO("cage: " << garment.name << ": " << cage.curves.size() << " curves, " << cage.nodes.size()
                            << " nodes, " << patchList.size() << " patches, largest patch " << largest << " px of "
                            << size << " -> " << out.string() << "/{cage.json, patches.json, cage.png}");

@@ -1,5 +1,5 @@
 // pixelcloth dataset info|check|merge|import: look at, verify, merge and import dataset folders (docs/dataset.md).
-#include "pixelcloth/sim/dataset.h"
+#include "pixelcloth/data/dataset.h"
 
 #include <iostream>
 #include <memory>
@@ -10,6 +10,7 @@
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -31,7 +32,7 @@ struct DatasetArgs {
 };
 
 void runInfo(const DatasetArgs& args) {
-  const sim::DatasetInfo info = sim::readDatasetInfo(args.folder);
+  const data::DatasetInfo info = data::readDatasetInfo(args.folder);
   if (args.json) {
     nlohmann::json summary = info.manifest;
     summary.erase("checksums");
@@ -43,28 +44,31 @@ void runInfo(const DatasetArgs& args) {
 }
 
 void runCheck(const DatasetArgs& args) {
-  sim::DatasetCheckOptions options;
+  data::DatasetCheckOptions options;
   options.strongSamples = args.strongSamples;
-  const sim::DatasetCheckReport report = sim::checkDataset(args.folder, options);
+  const data::DatasetCheckReport report = data::checkDataset(args.folder, options);
   std::cout << "ok: " << args.folder << ": " << report.summary() << '\n';
 }
 
 void runMerge(const DatasetArgs& args) {
   std::vector<std::filesystem::path> shards(args.shards.begin(), args.shards.end());
-  const sim::DatasetInfo info = sim::mergeDatasets(shards, args.out);
+  const data::DatasetInfo info = data::mergeDatasets(shards, args.out);
   std::cout << "merged " << shards.size() << " shards: " << info.settings.rows() << " samples -> " << args.out << '\n';
 }
 
 void runImport(const DatasetArgs& args) {
   using namespace pixelcloth::core;
+  using namespace pixelcloth::body;
+  using namespace pixelcloth::garment;
+  using namespace pixelcloth::viz;
   const std::filesystem::path objsPath(args.objs);
   std::error_code ec;
   const std::vector<std::filesystem::path> objs = std::filesystem::is_directory(objsPath, ec)
-                                                      ? sim::objSequence(objsPath)
+                                                      ? data::objSequence(objsPath)
                                                       : std::vector<std::filesystem::path>{objsPath};
   checkOutputFolder(args.out);
   // Fail on a bad pose file before the body and the dressing are built.
-  sim::readPoseSequence(args.poses, args.garment == "necktie" ? 36 : 90);
+  data::readPoseSequence(args.poses, args.garment == "necktie" ? 36 : 90);
   PIXELCLOTH_CHECK(args.body.empty() || args.dressing.empty(),
                    "dataset import: --body and --dressing exclude each other: the dressing "
                    "folder holds the body its embedding was made on");
@@ -75,9 +79,9 @@ void runImport(const DatasetArgs& args) {
   nlohmann::json bodyDescription;
   if (!args.dressing.empty()) {
     const std::filesystem::path dressingFolder(args.dressing);
-    body = sim::loadDatasetBody(dressingFolder);
-    rest = sim::loadDatasetRestPositions(dressingFolder, garment.mesh.numVertices());
-    embedding = sim::loadDatasetEmbedding(dressingFolder, body.mesh.numFaces());
+    body = data::loadDatasetBody(dressingFolder);
+    rest = data::loadDatasetRestPositions(dressingFolder, garment.mesh.numVertices());
+    embedding = data::loadDatasetEmbedding(dressingFolder, body.mesh.numFaces());
     PIXELCLOTH_CHECK(embedding.size() == garment.mesh.numVertices(),
                      args.dressing << "/embedding_triangle.npy: " << embedding.size() << " cloth pixels, the "
                                    << garment.name << " has " << garment.mesh.numVertices());
@@ -91,11 +95,11 @@ void runImport(const DatasetArgs& args) {
     rest = dressing.relaxed;
     embedding = dressing.embedding;
   }
-  sim::ImportOptions options;
+  data::ImportOptions options;
   options.body = bodyDescription;
   options.seed = args.seed;
-  const sim::DatasetSettings settings =
-      sim::importDataset(objs, args.poses, body, garment, rest, embedding, args.out, options);
+  const data::DatasetSettings settings =
+      data::importDataset(objs, args.poses, body, garment, rest, embedding, args.out, options);
   std::cout << "imported " << settings.count << " frames -> " << args.out << '\n';
 }
 

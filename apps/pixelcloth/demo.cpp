@@ -10,24 +10,26 @@
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/atomic_file.h"
-#include "pixelcloth/core/body.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/body/body.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
-#include "pixelcloth/core/pose_io.h"
-#include "pixelcloth/core/previews.h"
+#include "pixelcloth/body/pose_io.h"
+#include "pixelcloth/viz/previews.h"
 #include "pixelcloth/core/progress.h"
-#include "pixelcloth/patches/basis_figures.h"
+#include "pixelcloth/viz/basis_figures.h"
 #include "pixelcloth/patches/cloth_image.h"
 #include "pixelcloth/patches/edit.h"
 #include "pixelcloth/patches/garment_fill.h"
-#include "pixelcloth/sim/dataset.h"
+#include "pixelcloth/data/dataset.h"
 #include "pixelcloth/sim/generate.h"
-#include "pixelcloth/sim/pose_figures.h"
+#include "pixelcloth/viz/pose_figures.h"
 #include "pixelcloth/sim/pose_sampler.h"
-#include "pixelcloth/sim/reconstruct.h"
+#include "pixelcloth/recon/reconstruct.h"
+#include "pixelcloth/viz/draw.h"
+#include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -35,6 +37,9 @@ namespace pixelcloth::apps {
 namespace {
 namespace fs = std::filesystem;
 using namespace pixelcloth::core;
+using namespace pixelcloth::body;
+using namespace pixelcloth::garment;
+using namespace pixelcloth::viz;
 
 struct DemoArgs {
   std::string out;
@@ -125,7 +130,7 @@ void runDemo(const DemoArgs& args) {
   steps.run("body cage: loops, centre and side lines, armholes", [&] {
     cage::Cage bodyCage = cage::bodyCage(body);
     writeJson(out / "body" / "cage.json", cage::toJson(bodyCage));
-    writePng(out / "body" / "cage.png", cage::renderCageOnMesh(body.mesh, bodyCage));
+    writePng(out / "body" / "cage.png", viz::renderCageOnMesh(body.mesh, bodyCage));
     report["body_cage"] = {{"curves", bodyCage.curves.size()}, {"nodes", bodyCage.nodes.size()}};
   });
   section("Body cage",
@@ -246,7 +251,7 @@ void runDemo(const DemoArgs& args) {
           "side, each within 128 px of its side's 512 x 512 image. Lists in tshirt/patches.json.",
           {"tshirt/cage.png", "necktie/cage.png"});
 
-  steps.run("patch bases: the appendix's figures", [&] { patches::writeBasisFigures(out / "bases"); });
+  steps.run("patch bases: the appendix's figures", [&] { viz::writeBasisFigures(out / "bases"); });
   section("Patch bases",
           "Harmonic (left pair) and anisotropic (right pair, 30 degrees, ratio 0.1) fills of a 20 cm "
           "square patch from four boundary shapes: one bump, two bumps, a sine wave, an S-shaped "
@@ -274,10 +279,10 @@ void runDemo(const DemoArgs& args) {
     patches::brushImage(edited, {0.5 * image.width, 0.45 * image.height, 0.09 * image.width, 0.03f});
     patches::shiftImage(edited, 0.003f, 0.0f);
     patches::writeClothImage(out / "images" / "edited.exr", edited);
-    patches::PreviewOptions preview;
+    viz::PreviewOptions preview;
     preview.range = 0.04f;
     writePng(out / "images" / "filled_and_edited.png",
-             contactSheet({patches::renderClothImage(image, preview), patches::renderClothImage(edited, preview)}, 1));
+             contactSheet({viz::renderClothImage(image, preview), viz::renderClothImage(edited, preview)}, 1));
     Eigen::MatrixXf back = imager.sample(image);
     report["cloth_image"] = {{"size", {image.width, image.height}},
                              {"round_trip_max_error_mm", 1e3 * (back - offsets).cwiseAbs().maxCoeff()}};
@@ -317,11 +322,11 @@ void runDemo(const DemoArgs& args) {
     generate.seed = args.seed;
     generate.bodyFolder = out / "body";
     const sim::GenerateReport made = sim::generateDataset(out / folder, generate);
-    const sim::DatasetCheckReport checked = sim::checkDataset(out / folder);
-    const sim::Dataset dataset = sim::openDataset(out / folder);
+    const data::DatasetCheckReport checked = data::checkDataset(out / folder);
+    const data::Dataset dataset = data::openDataset(out / folder);
     const Garment garment = name == "necktie" ? makeNecktie() : makeTShirt();
     patches::ClothImager imager(garment);
-    patches::PreviewOptions preview;
+    viz::PreviewOptions preview;
     preview.range = 0.05f;
     std::vector<RgbImage> row;
     for (int r = 0; r < std::min(3, dataset.rows()); ++r) {
@@ -334,7 +339,7 @@ void runDemo(const DemoArgs& args) {
       view.width = view.height = 300;
       row.push_back(renderPosedBody(body, pose, view));
       row.push_back(renderGarmentOnBody(draped, &posed, 300));
-      row.push_back(patches::renderClothImage(imager.rasterize(dataset.offsetsOf(r)), preview));
+      row.push_back(viz::renderClothImage(imager.rasterize(dataset.offsetsOf(r)), preview));
     }
     writePng(out / folder / "contact_sheet.png", contactSheet(row, 3));
     report[folder] = {{"samples", dataset.rows()},
@@ -355,16 +360,17 @@ void runDemo(const DemoArgs& args) {
   steps.run("reconstruction from markers: the T-shirt samples rebuilt by every method", [&] {
     // The spline's length model is fitted on the training split; the test split is rebuilt (every sample when the
     // dataset is too small to have one).
-    const sim::Dataset dataset = sim::openDataset(out / "dataset_tshirt");
-    sim::DatasetReconstructionOptions options;
-    options.split = dataset.rowsOf(sim::Split::Test).empty() ? "all" : "test";
+    const data::Dataset dataset = data::openDataset(out / "dataset_tshirt");
+    recon::DatasetReconstructionOptions options;
+    options.split = dataset.rowsOf(data::Split::Test).empty() ? "all" : "test";
     options.meshes = 2;
     const fs::path folder = out / "reconstruction";
-    const sim::DatasetReconstructionReport rec = sim::reconstructDataset(out / "dataset_tshirt", folder, options);
+    const recon::DatasetReconstructionReport rec = recon::reconstructDataset(out / "dataset_tshirt", folder, options);
     std::vector<int> shown;
     for (int r = 0; r < dataset.rows() && static_cast<int>(shown.size()) < 2; ++r)
-      if (options.split == "all" || dataset.split[r] == static_cast<std::uint8_t>(sim::Split::Test)) shown.push_back(r);
-    const Garment shirt = sim::datasetGarment(dataset.info);
+      if (options.split == "all" || dataset.split[r] == static_cast<std::uint8_t>(data::Split::Test)) shown.push_back(r);
+    const Garment shirt = data::datasetGarment(dataset.info);
+    writePng(folder / "error_maps.png", renderReconstructionErrors(shirt, rec));
     std::vector<RgbImage> rows;
     for (int r : shown) {
       std::ostringstream sample;
@@ -420,27 +426,27 @@ void runDemo(const DemoArgs& args) {
     sim::PoseSampler sampler(body, options);
     std::vector<Pose> drawn, survivors, kept;
     for (int k = 0; k < args.filterPoses; ++k) drawn.push_back(sampler.draw());
-    sim::DatasetStats tally;  // the same tally as a dataset's manifest: kept samples, rejections by reason
+    data::DatasetStats tally;  // the same tally as a dataset's manifest: kept samples, rejections by reason
     for (const Pose& pose : drawn) {
       if (sampler.armInsideTorso(pose))
-        tally.reject(sim::Rejection::ArmInsideTorso);
+        tally.reject(data::Rejection::ArmInsideTorso);
       else
         survivors.push_back(pose);
     }
     const Garment shirt = makeTShirt();
     const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), shirt, cage::garmentCage(shirt));
-    const std::vector<sim::SampleStats> stats = sim::simulatePoses(body, shirt, dressing, survivors);
+    const std::vector<data::SampleStats> stats = sim::simulatePoses(body, shirt, dressing, survivors);
     double seconds = 0;
     for (size_t k = 0; k < stats.size(); ++k) {
       seconds += stats[k].seconds;
-      if (stats[k].rejection == sim::Rejection::None) {
+      if (stats[k].rejection == data::Rejection::None) {
         kept.push_back(survivors[k]);
         tally.add(stats[k]);
       } else {
         tally.reject(stats[k].rejection);
       }
     }
-    writePng(out / "poses" / "joint_histograms.png", sim::renderJointHistograms(drawn, kept));
+    writePng(out / "poses" / "joint_histograms.png", viz::renderJointHistograms(drawn, kept));
     report["pose_sampling"] = {{"drawn", drawn.size()},
                                {"kept", kept.size()},
                                {"rejected", tally.rejected},

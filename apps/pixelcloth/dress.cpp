@@ -8,13 +8,15 @@
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/atomic_file.h"
-#include "pixelcloth/core/body.h"
+#include "pixelcloth/body/body.h"
 #include "pixelcloth/core/error.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
-#include "pixelcloth/core/previews.h"
+#include "pixelcloth/viz/previews.h"
+#include "pixelcloth/core/mesh_index.h"
+#include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -36,6 +38,9 @@ nlohmann::json ratioStats(const Eigen::VectorXd& ratios) {
 
 void runDress(const DressArgs& args) {
   using namespace pixelcloth::core;
+  using namespace pixelcloth::body;
+  using namespace pixelcloth::garment;
+  using namespace pixelcloth::viz;
   checkOutputFolder(args.out);
   Body body;
   if (args.body.empty()) {
@@ -57,16 +62,19 @@ void runDress(const DressArgs& args) {
 }
 }  // namespace
 
-void writeDressingFolder(const core::Body& body, const core::Garment& garment, const cage::Dressing& dressing,
+void writeDressingFolder(const body::Body& body, const garment::Garment& garment, const cage::Dressing& dressing,
                          const std::filesystem::path& out) {
   using namespace pixelcloth::core;
+  using namespace pixelcloth::body;
+  using namespace pixelcloth::garment;
+  using namespace pixelcloth::viz;
   PIXELCLOTH_CHECK(
       dressing.relaxed.rows() == garment.mesh.numVertices(),
       "dress: the dressing has " << dressing.relaxed.rows() << " vertices, the garment " << garment.mesh.numVertices());
   Garment dressed = garment;
   dressed.mesh.V = dressing.relaxed;
   writeMesh(out / "dressed.obj", dressed.mesh);
-  writePng(out / "area_distortion.png", cage::renderAreaDistortion(garment, dressing));
+  writePng(out / "area_distortion.png", viz::renderAreaDistortion(garment, dressing));
   writePng(out / "dressed.png", renderGarmentOnBody(dressed, &body));
 
   const std::vector<bool> inside = insideClosedMesh(body.mesh.V, body.mesh.F, dressing.relaxed);

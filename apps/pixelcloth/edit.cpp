@@ -5,6 +5,7 @@
 
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -24,6 +25,9 @@ struct EditArgs {
 
 void runEdit(const EditArgs& args, bool inflateGiven, bool inflateAddGiven) {
   using namespace pixelcloth::core;
+  using namespace pixelcloth::body;
+  using namespace pixelcloth::garment;
+  using namespace pixelcloth::viz;
   using namespace pixelcloth::patches;
   const int edits = !args.shift.empty() + (inflateGiven || inflateAddGiven) + !args.brush.empty() + !args.blend.empty();
   PIXELCLOTH_CHECK(

@@ -1,11 +1,12 @@
 // pixelcloth garment: a garment template as a mesh with pattern-space UVs, and its pattern picture.
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 
 #include <memory>
 
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/log.h"
-#include "pixelcloth/core/previews.h"
+#include "pixelcloth/viz/previews.h"
+#include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -19,6 +20,9 @@ struct GarmentArgs {
 
 void runGarment(const GarmentArgs& args) {
   using namespace pixelcloth::core;
+  using namespace pixelcloth::body;
+  using namespace pixelcloth::garment;
+  using namespace pixelcloth::viz;
   Garment garment;
   if (args.kind == "tshirt") {
     TShirtOptions options;

@@ -3,12 +3,13 @@
 #include <memory>
 
 #include "pixelcloth/core/atomic_file.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/npy.h"
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/patches/cloth_image.h"
-#include "pixelcloth/sim/dataset.h"
+#include "pixelcloth/data/dataset.h"
+#include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -30,12 +31,15 @@ struct ImagesArgs {
 /// Cloth images of dataset samples: cloth_NNNNNN.exr and .png per sample index.
 void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& options) {
   using namespace pixelcloth::core;
+  using namespace pixelcloth::body;
+  using namespace pixelcloth::garment;
+  using namespace pixelcloth::viz;
   PIXELCLOTH_CHECK(args.values.empty() && args.image.empty(),
                    "images: --dataset takes the offsets from the dataset; leave out --values and --image");
   PIXELCLOTH_CHECK(args.all != !args.samples.empty(), "images: with --dataset give --samples i,j,... or --all");
   checkOutputFolder(args.out);
-  const sim::Dataset dataset = sim::openDataset(args.dataset);
-  const sim::DatasetSettings& settings = dataset.info.settings;
+  const data::Dataset dataset = data::openDataset(args.dataset);
+  const data::DatasetSettings& settings = dataset.info.settings;
   PIXELCLOTH_CHECK(args.garment.empty() || args.garment == settings.garment,
                    "images: --garment " << args.garment << ", but " << args.dataset << " holds a " << settings.garment);
   std::vector<int> indices = args.samples;
@@ -45,7 +49,7 @@ void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& 
     PIXELCLOTH_CHECK(index >= settings.first() && index < settings.end(),
                      "images: --samples " << index << ": " << args.dataset << " holds samples " << settings.first()
                                           << " to " << settings.end() - 1);
-  const Garment garment = sim::datasetGarment(dataset.info);
+  const Garment garment = data::datasetGarment(dataset.info);
   const patches::ClothImager imager(garment, options);
   const std::filesystem::path folder(args.out);
   Progress progress("images", static_cast<std::int64_t>(indices.size()));
@@ -54,7 +58,7 @@ void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& 
     std::snprintf(name, sizeof(name), "cloth_%06d", index);
     const patches::ClothImage image = imager.rasterize(dataset.offsetsOf(index - settings.first()));
     patches::writeClothImage(folder / (std::string(name) + ".exr"), image);
-    writePng(folder / (std::string(name) + ".png"), patches::renderClothImage(image));
+    writePng(folder / (std::string(name) + ".png"), viz::renderClothImage(image));
     progress.advance();
   }
   progress.finish();
@@ -64,6 +68,9 @@ void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& 
 
 void runImages(const ImagesArgs& args) {
   using namespace pixelcloth::core;
+  using namespace pixelcloth::body;
+  using namespace pixelcloth::garment;
+  using namespace pixelcloth::viz;
   using namespace pixelcloth::patches;
   ClothImageOptions options;
   options.width = args.width;

@@ -1,11 +1,12 @@
 // pixelcloth pose: skin a body folder into given or random poses.
 #include <memory>
 
-#include "pixelcloth/core/body.h"
+#include "pixelcloth/body/body.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
-#include "pixelcloth/core/pose_io.h"
+#include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/sim/pose_sampler.h"
+#include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -21,6 +22,9 @@ struct PoseArgs {
 
 void runPose(const PoseArgs& args) {
   using namespace pixelcloth::core;
+  using namespace pixelcloth::body;
+  using namespace pixelcloth::garment;
+  using namespace pixelcloth::viz;
   PIXELCLOTH_CHECK(args.pose.empty() != (args.random == 0),
                    "pose: give either --pose POSE.json or --random N (with --seed S)");
   PIXELCLOTH_CHECK(args.random >= 0 && args.random <= 10000,

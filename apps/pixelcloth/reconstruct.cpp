@@ -1,5 +1,5 @@
 // pixelcloth markers / reconstruct: marker sets on the cage, and garments rebuilt from them (issue 5).
-#include "pixelcloth/sim/reconstruct.h"
+#include "pixelcloth/recon/reconstruct.h"
 
 #include <cmath>
 #include <iostream>
@@ -14,8 +14,9 @@
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
-#include "pixelcloth/core/pose_io.h"
-#include "pixelcloth/sim/dataset.h"
+#include "pixelcloth/body/pose_io.h"
+#include "pixelcloth/data/dataset.h"
+#include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -35,10 +36,10 @@ struct MarkersArgs {
   std::string poseOut;
 };
 
-core::Garment garmentByName(const std::string& name, const std::string& context) {
+garment::Garment garmentByName(const std::string& name, const std::string& context) {
   PIXELCLOTH_CHECK(name == "tshirt" || name == "necktie",
                    context << ": unknown garment '" << name << "', expected tshirt or necktie");
-  return name == "tshirt" ? core::makeTShirt() : core::makeNecktie();
+  return name == "tshirt" ? garment::makeTShirt() : garment::makeNecktie();
 }
 
 void runMarkers(const MarkersArgs& args) {
@@ -48,21 +49,21 @@ void runMarkers(const MarkersArgs& args) {
   cage::CaptureOptions capture{args.noiseCm / 100, args.dropout, args.seed};
   capture.validate();
   if (args.dataset.empty()) {
-    const core::Garment garment = garmentByName(args.garment, "markers --garment");
+    const garment::Garment garment = garmentByName(args.garment, "markers --garment");
     cage::writeMarkers(args.out, cage::defineMarkers(garment, cage::garmentCage(garment), options));
     PIXELCLOTH_INFO("markers: " << garment.name << " marker definition -> " << args.out);
     return;
   }
-  const sim::Dataset dataset = sim::openDataset(args.dataset);
+  const data::Dataset dataset = data::openDataset(args.dataset);
   const int row = args.sample - dataset.info.settings.first();
   PIXELCLOTH_CHECK(row >= 0 && row < dataset.rows(),
                    "markers --sample " << args.sample << ": " << args.dataset << " holds samples "
                                        << dataset.info.settings.first() << " to " << dataset.info.settings.end() - 1);
-  const core::Garment garment = sim::datasetGarment(dataset.info);
+  const garment::Garment garment = data::datasetGarment(dataset.info);
   const cage::MarkerSet definition = cage::defineMarkers(garment, cage::garmentCage(garment), options);
   const cage::MarkerSet markers = cage::placeMarkers(definition, dataset.positionsOf(row).cast<double>(), capture);
   if (!args.poseOut.empty()) {
-    core::writeJson(args.poseOut, core::poseToJson(core::Pose::fromLeading(dataset.pose(row), args.dataset)));
+    core::writeJson(args.poseOut, body::poseToJson(body::Pose::fromLeading(dataset.pose(row), args.dataset)));
   }
   cage::writeMarkers(args.out, markers);
   PIXELCLOTH_INFO("markers: " << markers.markers.size() << " markers of sample " << args.sample << " -> " << args.out);
@@ -85,8 +86,8 @@ void runFromMarkers(const ReconstructArgs& args) {
   PIXELCLOTH_CHECK(!args.pose.empty(), "reconstruct --markers needs --pose (the body's pose, JSON)");
   PIXELCLOTH_CHECK(args.body.empty() || args.dressing.empty(),
                    "reconstruct: --body and --dressing exclude each other: the dressing folder holds its body");
-  const sim::ReconstructionMethod method = sim::reconstructionMethodFromName(args.method, "reconstruct --method");
-  sim::ReconstructionOptions options;
+  const recon::ReconstructionMethod method = recon::reconstructionMethodFromName(args.method, "reconstruct --method");
+  recon::ReconstructionOptions options;
   options.spline = args.spline;
   options.spline.restLengths = cage::restLengthsFromName(args.restLengths, "reconstruct --rest-lengths");
   options.bodyClearance = args.bodyClearance;
@@ -97,29 +98,29 @@ void runFromMarkers(const ReconstructArgs& args) {
                    "length_model.json a dataset run wrote, or none");
   if (!args.lengthModel.empty() && args.lengthModel != "none")
     options.lengthModel = cage::readLengthModel(args.lengthModel);
-  const core::Pose pose = core::readPose(args.pose);
-  const core::Garment garment = garmentByName(markers.garment, args.markers);
+  const body::Pose pose = body::readPose(args.pose);
+  const garment::Garment garment = garmentByName(markers.garment, args.markers);
   const cage::Cage cage = cage::garmentCage(garment);
   markers.validate(garment, cage, args.markers, true);
-  core::Body body;
+  body::Body body;
   Eigen::MatrixX3d rest;
-  core::Embedding embedding;
+  garment::Embedding embedding;
   if (!args.dressing.empty()) {
-    body = sim::loadDatasetBody(args.dressing);
-    rest = sim::loadDatasetRestPositions(args.dressing, garment.mesh.numVertices());
-    embedding = sim::loadDatasetEmbedding(args.dressing, body.mesh.numFaces());
+    body = data::loadDatasetBody(args.dressing);
+    rest = data::loadDatasetRestPositions(args.dressing, garment.mesh.numVertices());
+    embedding = data::loadDatasetEmbedding(args.dressing, body.mesh.numFaces());
     PIXELCLOTH_CHECK(embedding.size() == garment.mesh.numVertices(),
                      args.dressing << "/embedding_triangle.npy: " << embedding.size() << " cloth pixels, the "
                                    << garment.name << " has " << garment.mesh.numVertices());
   } else {
-    body = args.body.empty() ? core::makeMannequin() : core::loadBody(args.body);
+    body = args.body.empty() ? body::makeMannequin() : body::loadBody(args.body);
     const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), garment, cage);
     rest = dressing.relaxed;
     embedding = dressing.embedding;
   }
   if (options.lengthModel) options.lengthModel->validate(garment.name, cage, args.lengthModel);
-  const sim::GarmentReconstructor reconstructor(body, garment, embedding, rest, options);
-  const sim::Reconstruction result = reconstructor.reconstruct(markers, pose, method);
+  const recon::GarmentReconstructor reconstructor(body, garment, embedding, rest, options);
+  const recon::Reconstruction result = reconstructor.reconstruct(markers, pose, method);
   core::Mesh mesh = garment.mesh;
   mesh.V = result.positions;
   core::writeMesh(args.out, mesh);
@@ -128,7 +129,7 @@ void runFromMarkers(const ReconstructArgs& args) {
 }
 
 void runFromDataset(const ReconstructArgs& args) {
-  sim::DatasetReconstructionOptions options;
+  recon::DatasetReconstructionOptions options;
   options.split = args.split;
   options.markers.spacing = args.spacing;
   options.capture = {args.noiseCm / 100, args.dropout, args.seed};
@@ -145,7 +146,9 @@ void runFromDataset(const ReconstructArgs& args) {
   options.reconstruction.bodyClearance = args.bodyClearance;
   options.meshes = args.meshes;
   options.quiet = args.quiet;
-  const sim::DatasetReconstructionReport report = sim::reconstructDataset(args.dataset, args.out, options);
+  const recon::DatasetReconstructionReport report = recon::reconstructDataset(args.dataset, args.out, options);
+  core::writePng(std::filesystem::path(args.out) / "error_maps.png",
+                 viz::renderReconstructionErrors(data::datasetGarment(data::readDatasetInfo(args.dataset)), report));
   for (const auto& [name, m] : report.metrics["methods"].items())
     std::cout << name << ": cage " << m["cage_cm"].get<double>() << " cm, garment " << m["garment_cm"].get<double>()
               << " cm\n";

@@ -147,9 +147,9 @@ void BodyCageOptions::validate() const {
                    "body cage: expected armhole < bicep < sleeve hem along the arm");
 }
 
-Cage bodyCage(const core::Body& body, const BodyCageOptions& options) {
+Cage bodyCage(const body::Body& body, const BodyCageOptions& options) {
   options.validate();
-  const core::Skeleton& s = body.skeleton;
+  const body::Skeleton& s = body.skeleton;
   SurfaceWalker walker(body.mesh, options.planeTolerance);
   auto joint = [&](const std::string& name) -> Vec { return s.positions.row(s.index(name)).transpose(); };
   const Vec up = Vec::UnitY(), front = Vec::UnitZ(), left = Vec::UnitX();

@@ -2,11 +2,6 @@
 // edge-length equalisation on the body, embedding.
 #include "pixelcloth/cage/dressing.h"
 
-#include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/Surface_mesh.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -21,69 +16,38 @@
 #include <unordered_map>
 
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/geometry.h"
+#include "pixelcloth/core/mesh_index.h"
 
 namespace pixelcloth::cage {
 
 namespace {
-using Kernel = CGAL::Simple_cartesian<double>;
-using Point = Kernel::Point_3;
-using SurfaceMesh = CGAL::Surface_mesh<Point>;
-using Primitive = CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-using Hint = Tree::Point_and_primitive_id;
 
-/// Closest-point queries on the rest body: the point, its face, and the smooth (vertex-normal blended) normal there.
+/// Closest-point queries on the rest body: the point and the smooth (vertex-normal blended) normal there.
 class BodySurface {
  public:
   struct Hit {
     Eigen::Vector3d point, normal;
-    Hint hint;  ///< for the next query near this one
+    core::MeshHit hit;  ///< for the next query near this one
   };
 
-  explicit BodySurface(const core::Body& body) : V_(body.mesh.V), F_(body.mesh.F) {
-    normals_ = core::vertexNormals(V_, F_);
-    std::vector<SurfaceMesh::Vertex_index> handles;
-    handles.reserve(V_.rows());
-    for (int i = 0; i < V_.rows(); ++i) handles.push_back(mesh_.add_vertex(Point(V_(i, 0), V_(i, 1), V_(i, 2))));
-    for (int f = 0; f < F_.rows(); ++f) {
-      const auto face = mesh_.add_face(handles[F_(f, 0)], handles[F_(f, 1)], handles[F_(f, 2)]);
-      PIXELCLOTH_CHECK(face != SurfaceMesh::null_face(), "dressing: body face " << f << " is not manifold");
-    }
-    tree_.insert(faces(mesh_).first, faces(mesh_).second, mesh_);
-    tree_.accelerate_distance_queries();
+  explicit BodySurface(const body::Body& body) : index_(body.mesh.V, body.mesh.F) {
+    normals_ = core::vertexNormals(body.mesh.V, body.mesh.F);
   }
 
-  Hit closest(const Eigen::Vector3d& p) const { return hit(tree_.closest_point_and_primitive(toPoint(p))); }
+  Hit closest(const Eigen::Vector3d& p) const { return hitOf(index_.closest(p)); }
   /// Same, starting the search from a previous hit nearby (much faster for small moves).
-  Hit closest(const Eigen::Vector3d& p, const Hit& near) const {
-    return hit(tree_.closest_point_and_primitive(toPoint(p), near.hint));
-  }
+  Hit closest(const Eigen::Vector3d& p, const Hit& near) const { return hitOf(index_.closest(p, near.hit)); }
   /// The smooth normal at vertex v of the body.
   Eigen::Vector3d vertexNormal(int v) const { return normals_.row(v).transpose(); }
 
  private:
-  static Point toPoint(const Eigen::Vector3d& p) { return Point(p.x(), p.y(), p.z()); }
-  Hit hit(const Hint& found) const {
-    const int f = static_cast<int>(found.second.idx());
-    Hit h;
-    h.point = Eigen::Vector3d(found.first.x(), found.first.y(), found.first.z());
-    const Eigen::Vector3d bary = core::barycentricCoordinates(
-        h.point, V_.row(F_(f, 0)).transpose(), V_.row(F_(f, 1)).transpose(), V_.row(F_(f, 2)).transpose());
-    h.normal = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) h.normal += bary[k] * normals_.row(F_(f, k)).transpose();
-    if (h.normal.norm() < 1e-12) {
-      h.normal = (V_.row(F_(f, 1)) - V_.row(F_(f, 0))).cross(V_.row(F_(f, 2)) - V_.row(F_(f, 0))).transpose();
-    }
-    h.normal.normalize();
-    h.hint = found;
-    return h;
+  Hit hitOf(const core::MeshHit& found) const {
+    return {found.point, index_.smoothNormal(found.face, found.barycentric), found};
   }
 
-  const Eigen::MatrixX3d& V_;
-  const Eigen::MatrixX3i& F_;
+  core::MeshIndex index_;
   Eigen::MatrixX3d normals_;
-  SurfaceMesh mesh_;
-  Tree tree_;
 };
 
 std::uint64_t edgeKey(int a, int b) {
@@ -98,7 +62,7 @@ struct PatternEdges {
   std::vector<double> restLength;
   std::unordered_map<std::uint64_t, int> index;  ///< edgeKey -> row of `edges`
 
-  explicit PatternEdges(const core::Garment& garment) {
+  explicit PatternEdges(const garment::Garment& garment) {
     const auto& F = garment.mesh.F;
     const auto& FUV = garment.mesh.FUV;
     const auto& UV = garment.mesh.UV;
@@ -140,7 +104,7 @@ struct BodyPolyline {
 };
 
 /// Point on the body polyline at arc length s (clamped), offset by `clearance` along the blended vertex normal.
-Eigen::Vector3d pointAt(const core::Body& body, const BodySurface& surface, const BodyPolyline& line, double s,
+Eigen::Vector3d pointAt(const body::Body& body, const BodySurface& surface, const BodyPolyline& line, double s,
                         double clearance) {
   const auto& V = body.mesh.V;
   const size_t n = line.vertices.size();
@@ -162,7 +126,7 @@ struct Anchor {
 
 /// The placement of one garment curve on one orientation of its body namesake (`body` already reversed if needed);
 /// empty when the anchors are not in the same order along both curves.
-std::vector<Eigen::Vector3d> placeCurve(const core::Body& body, const BodySurface& surface, const CageCurve& g,
+std::vector<Eigen::Vector3d> placeCurve(const body::Body& body, const BodySurface& surface, const CageCurve& g,
                                         const std::vector<int>& bodyVertices, std::vector<Anchor> anchors,
                                         const PatternEdges& patternEdges, double clearance) {
   const int nG = static_cast<int>(g.vertices.size()), nB = static_cast<int>(bodyVertices.size());
@@ -228,8 +192,8 @@ std::vector<Eigen::Vector3d> placeCurve(const core::Body& body, const BodySurfac
 
 /// Morphs every garment curve that has a body namesake onto it (design: split both at their shared junctions, place
 /// by arc-length fraction, `clearance` outside along the body normal). Returns the targets of the cage vertices.
-std::map<int, Eigen::Vector3d> morphCage(const core::Body& body, const BodySurface& surface, const Cage& bodyCage,
-                                         const core::Garment& garment, const Cage& garmentCage,
+std::map<int, Eigen::Vector3d> morphCage(const body::Body& body, const BodySurface& surface, const Cage& bodyCage,
+                                         const garment::Garment& garment, const Cage& garmentCage,
                                          const PatternEdges& patternEdges, double clearance) {
   std::unordered_map<int, std::string> garmentNodeAt;
   for (const CageNode& node : garmentCage.nodes) garmentNodeAt[node.vertex] = node.name;
@@ -300,15 +264,7 @@ Eigen::MatrixX3d harmonicDisplacement(const Eigen::MatrixX3d& V, const Eigen::Ma
   const int n = static_cast<int>(V.rows());
   Eigen::MatrixX3d displacement = Eigen::MatrixX3d::Zero(n, 3);
   if (fixedDisplacement.empty()) return displacement;
-  std::unordered_map<std::uint64_t, double> weight;
-  for (int f = 0; f < F.rows(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const int i = F(f, (k + 1) % 3), j = F(f, (k + 2) % 3);
-      const Eigen::Vector3d a = V.row(i) - V.row(F(f, k)), b = V.row(j) - V.row(F(f, k));
-      const double sine = a.cross(b).norm();
-      weight[edgeKey(i, j)] += 0.5 * (sine > 1e-20 ? a.dot(b) / sine : 0.0);
-    }
-  }
+  const Eigen::SparseMatrix<double> laplacian = core::cotangentLaplacian(V, F);
   std::vector<int> freeIndex(n, -1);
   int numFree = 0;
   for (int v = 0; v < n; ++v) {
@@ -320,9 +276,11 @@ Eigen::MatrixX3d harmonicDisplacement(const Eigen::MatrixX3d& V, const Eigen::Ma
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(numFree, 3);
   Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(numFree);
-  for (const auto& [key, w0] : weight) {
-    const double w = std::max(w0, 1e-3);
-    const int i = static_cast<int>(key >> 32), j = static_cast<int>(key & 0xffffffffu);
+  for (int column = 0; column < laplacian.outerSize(); ++column)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(laplacian, column); it; ++it) {
+    const int i = static_cast<int>(it.row()), j = static_cast<int>(it.col());
+    if (i >= j) continue;  // each edge once
+    const double w = std::max(it.value(), 1e-3);
     for (const auto& [p, q] : {std::pair<int, int>{i, j}, std::pair<int, int>{j, i}}) {
       if (freeIndex[p] < 0) continue;
       diagonal[freeIndex[p]] += w;
@@ -332,7 +290,7 @@ Eigen::MatrixX3d harmonicDisplacement(const Eigen::MatrixX3d& V, const Eigen::Ma
         rhs.row(freeIndex[p]) += w * displacement.row(q);
       }
     }
-  }
+    }
   // A tiny diagonal term keeps pieces without any cage vertex (none on the T-shirt) solvable: they do not move.
   const double regularisation = 1e-9 * std::max(diagonal.maxCoeff(), 1.0);
   for (int i = 0; i < numFree; ++i) triplets.emplace_back(i, i, diagonal[i] + regularisation);
@@ -363,8 +321,8 @@ std::vector<double> log2Of(const Eigen::VectorXd& ratios) {
 }
 
 /// The part a cloth vertex collides with (see Dressing::part).
-std::vector<int> collisionPartOf(const core::Body& body, const core::Garment& garment,
-                                 const core::Embedding& embedding) {
+std::vector<int> collisionPartOf(const body::Body& body, const garment::Garment& garment,
+                                 const garment::Embedding& embedding) {
   const int numParts = static_cast<int>(body.parts.size());
   std::vector<std::vector<int>> partsOfFace(body.mesh.numFaces());
   for (int p = 0; p < numParts; ++p) {
@@ -420,7 +378,7 @@ std::string Dressing::summary() const {
   return s.str();
 }
 
-Eigen::MatrixX3d patternUDirections(const core::Garment& garment, const Eigen::MatrixX3d& positions) {
+Eigen::MatrixX3d patternUDirections(const garment::Garment& garment, const Eigen::MatrixX3d& positions) {
   const core::Mesh& mesh = garment.mesh;
   PIXELCLOTH_CHECK(positions.rows() == mesh.numVertices(), "patternUDirections: " << positions.rows()
                                                                                   << " positions for a garment of "
@@ -459,24 +417,7 @@ Eigen::MatrixX3d patternUDirections(const core::Garment& garment, const Eigen::M
   return u;
 }
 
-Eigen::VectorXd areaRatios(const core::Garment& garment, const Eigen::MatrixX3d& positions) {
-  const core::Mesh& mesh = garment.mesh;
-  PIXELCLOTH_CHECK(positions.rows() == mesh.numVertices() && mesh.hasUV(),
-                   "areaRatios: " << positions.rows() << " positions for a garment of " << mesh.numVertices()
-                                  << " vertices (UVs needed)");
-  Eigen::VectorXd ratio(mesh.numFaces());
-  for (int f = 0; f < mesh.numFaces(); ++f) {
-    const Eigen::Vector2d a = mesh.UV.row(mesh.FUV(f, 1)) - mesh.UV.row(mesh.FUV(f, 0)),
-                          b = mesh.UV.row(mesh.FUV(f, 2)) - mesh.UV.row(mesh.FUV(f, 0));
-    const double patternArea = 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
-    const Eigen::Vector3d x = positions.row(mesh.F(f, 1)) - positions.row(mesh.F(f, 0)),
-                          y = positions.row(mesh.F(f, 2)) - positions.row(mesh.F(f, 0));
-    ratio[f] = patternArea > 0 ? 0.5 * x.cross(y).norm() / patternArea : 1.0;
-  }
-  return ratio;
-}
-
-Dressing dressGarment(const core::Body& body, const Cage& bodyCage, const core::Garment& garment,
+Dressing dressGarment(const body::Body& body, const Cage& bodyCage, const garment::Garment& garment,
                       const Cage& garmentCage, const DressingOptions& options) {
   options.validate();
   const core::Mesh& mesh = garment.mesh;
@@ -515,7 +456,7 @@ Dressing dressGarment(const core::Body& body, const Cage& bodyCage, const core::
     d.pushed.row(v) = (hits[v].point + options.clearance * hits[v].normal).transpose();
     ++d.pushedVertices;
   }
-  d.areaRatioBefore = areaRatios(garment, d.pushed);
+  d.areaRatioBefore = core::areaRatios(d.pushed, garment.mesh);
 
   // 3. Relaxation (paper appendix): sweeps of edge-length equalisation, free vertices kept on the body.
   d.relaxed = d.pushed;
@@ -652,10 +593,10 @@ Dressing dressGarment(const core::Body& body, const Cage& bodyCage, const core::
     if (d.relaxIterations == 0) d.relaxResidual = 0;
   }
   PIXELCLOTH_CHECK(d.relaxed.allFinite(), "dressing: the relaxed garment is not finite");
-  d.areaRatioAfter = areaRatios(garment, d.relaxed);
+  d.areaRatioAfter = core::areaRatios(d.relaxed, garment.mesh);
 
   // 4. Embedding with the pattern's u axis on the dressed surface.
-  d.embedding = core::embedClosest(body.mesh.V, body.mesh.F, d.relaxed, patternUDirections(garment, d.relaxed));
+  d.embedding = garment::embedClosest(body.mesh.V, body.mesh.F, d.relaxed, patternUDirections(garment, d.relaxed));
   d.part = collisionPartOf(body, garment, d.embedding);
   return d;
 }

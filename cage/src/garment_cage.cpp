@@ -3,13 +3,13 @@
 
 namespace pixelcloth::cage {
 
-Cage garmentCage(const core::Garment& garment) {
+Cage garmentCage(const garment::Garment& garment) {
   Cage cage;
-  for (const core::Seam& seam : garment.seams)
+  for (const garment::Seam& seam : garment.seams)
     cage.curves.push_back({seam.name, CurveKind::Seam, false, seam.vertices});
-  for (const core::Opening& opening : garment.openings)
+  for (const garment::Opening& opening : garment.openings)
     cage.curves.push_back({opening.name, CurveKind::Opening, true, opening.vertices});
-  for (const core::CageLine& line : garment.lines) {
+  for (const garment::CageLine& line : garment.lines) {
     const std::string where = garment.name + ": cage line '" + line.name + "'";
     cage.curves.push_back({line.name, curveKindFromName(line.kind, where), line.closed, line.vertices});
   }

@@ -37,7 +37,7 @@ RestLengths restLengthsFromName(const std::string& name, const std::string& cont
   PIXELCLOTH_FAIL(context << ": unknown rest lengths '" << name << "'; expected pattern, polyline or geodesic");
 }
 
-double patternEdgeLength(const core::Garment& garment, int a, int b) {
+double patternEdgeLength(const garment::Garment& garment, int a, int b) {
   const int n = garment.mesh.numVertices();
   PIXELCLOTH_CHECK(a >= 0 && b >= 0 && a < n && b < n,
                    garment.name << ": edge (" << a << ", " << b << ") out of range for " << n << " vertices");
@@ -49,7 +49,7 @@ double patternEdgeLength(const core::Garment& garment, int a, int b) {
                                << "pattern-space length");
 }
 
-std::vector<double> patternArcLengths(const core::Garment& garment, const CageCurve& curve) {
+std::vector<double> patternArcLengths(const garment::Garment& garment, const CageCurve& curve) {
   const size_t n = curve.vertices.size();
   std::vector<double> s(1, 0.0);
   for (size_t i = 1; i < n + (curve.closed ? 1 : 0); ++i)

@@ -24,7 +24,7 @@ void CaptureOptions::validate() const {
                    "markers: dropout " << dropout << ", expected a fraction in [0, 1)");
 }
 
-void MarkerSet::validate(const core::Garment& garment, const Cage& cage, const std::string& context,
+void MarkerSet::validate(const garment::Garment& garment, const Cage& cage, const std::string& context,
                          bool requirePositions) const {
   PIXELCLOTH_CHECK(this->garment == garment.name, context << ": markers are for the garment '" << this->garment
                                                           << "', expected '" << garment.name << "'");
@@ -58,7 +58,7 @@ void MarkerSet::validate(const core::Garment& garment, const Cage& cage, const s
   }
 }
 
-MarkerSet defineMarkers(const core::Garment& garment, const Cage& cage, const MarkerOptions& options) {
+MarkerSet defineMarkers(const garment::Garment& garment, const Cage& cage, const MarkerOptions& options) {
   options.validate();
   MarkerSet set;
   set.garment = garment.name;

@@ -344,7 +344,7 @@ struct CageSplineSolver::Impl {
   }
 };
 
-CageSplineSolver::CageSplineSolver(const core::Garment& garment, const Cage& cage,
+CageSplineSolver::CageSplineSolver(const garment::Garment& garment, const Cage& cage,
                                    const Eigen::MatrixX3d& restPositions, const SplineOptions& options)
     : impl_(std::make_unique<Impl>()) {
   options.validate();

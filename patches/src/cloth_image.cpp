@@ -95,45 +95,8 @@ ClothImage readClothImage(const std::filesystem::path& path) {
   return ClothImage::fromExr(exr);
 }
 
-core::RgbImage renderClothImage(const ClothImage& image, const PreviewOptions& options) {
-  image.validate();
-  PIXELCLOTH_CHECK(std::isfinite(options.range) && options.range >= 0,
-                   "preview range must be >= 0 metres, got " << options.range);
-  PIXELCLOTH_CHECK(options.paddingBrightness >= 0 && options.paddingBrightness <= 1,
-                   "preview padding brightness must be in [0, 1], got " << options.paddingBrightness);
-  float range[3];
-  for (int c = 0; c < 3; ++c) {
-    range[c] = options.range;
-    if (range[c] > 0) continue;
-    float largest = 1e-6f;
-    for (const ClothLayer& l : image.layers) {
-      const Eigen::MatrixXf& channel = c == 0 ? l.du : c == 1 ? l.dv : l.dn;
-      largest = std::max(largest, (l.mask.array() > 0.5f).select(channel.array().abs(), 0.0f).maxCoeff());
-    }
-    range[c] = largest;
-  }
-  const int L = static_cast<int>(image.layers.size());
-  core::RgbImage rgb(L * image.width, image.height);
-  for (int l = 0; l < L; ++l) {
-    const ClothLayer& layer = image.layers[l];
-    for (int y = 0; y < image.height; ++y)
-      for (int x = 0; x < image.width; ++x) {
-        float m = layer.mask(y, x);
-        if (m < 0.5f) continue;  // empty: stays white
-        float scale = m < 1.5f ? options.paddingBrightness : 1.0f;
-        float v[3] = {layer.du(y, x), layer.dv(y, x), layer.dn(y, x)};
-        core::Color color;
-        for (int c = 0; c < 3; ++c) {
-          float t = std::clamp(0.5f + 0.5f * v[c] / range[c], 0.0f, 1.0f);
-          color[c] = static_cast<std::uint8_t>(std::lround(255.0f * t * scale));
-        }
-        rgb.set(l * image.width + x, y, color);
-      }
-  }
-  return rgb;
-}
 
-ImageFrame clothImageFrame(const core::Garment& garment, int layout, int width, int height, double margin) {
+ImageFrame clothImageFrame(const garment::Garment& garment, int layout, int width, int height, double margin) {
   PIXELCLOTH_CHECK(layout >= 0 && layout < garment.numLayouts(),
                    garment.name << ": layout " << layout << " does not exist (" << garment.numLayouts() << " layouts)");
   PIXELCLOTH_CHECK(width > 0 && height > 0, "image size must be positive, got " << width << " x " << height);
@@ -161,7 +124,7 @@ void ClothImageOptions::validate() const {
   PIXELCLOTH_CHECK(margin >= 0 && margin < 0.5, "cloth image margin must be in [0, 0.5), got " << margin);
 }
 
-ClothImager::ClothImager(const core::Garment& garment, const ClothImageOptions& options) {
+ClothImager::ClothImager(const garment::Garment& garment, const ClothImageOptions& options) {
   options.validate();
   const bool necktie = garment.name == "necktie";
   width_ = options.width > 0 ? options.width : necktie ? 64 : 256;
@@ -222,7 +185,7 @@ Eigen::MatrixXf ClothImager::sample(const ClothImage& image) const {
   return (sum.array().colwise() / layoutsPerVertex_.array().max(1.0f)).matrix();
 }
 
-PatchCrop cropFrame(const core::Garment& garment, const Patch& patch, int imageSize, int cropSize,
+PatchCrop cropFrame(const garment::Garment& garment, const Patch& patch, int imageSize, int cropSize,
                     const RasterOptions& options) {
   PIXELCLOTH_CHECK(imageSize > 0 && cropSize > 0 && cropSize <= 8192,
                    "patch crop: image size and crop size must be positive, got " << imageSize << " and " << cropSize);

@@ -6,7 +6,7 @@
 
 namespace pixelcloth::patches {
 
-ImageFrame layoutFrame(const core::Garment& garment, int layout, int size, double margin) {
+ImageFrame layoutFrame(const garment::Garment& garment, int layout, int size, double margin) {
   PIXELCLOTH_CHECK(layout >= 0 && layout < garment.numLayouts(),
                    garment.name << ": layout " << layout << " does not exist (" << garment.numLayouts() << " layouts)");
   PIXELCLOTH_CHECK(size > 0, "image size must be positive, got " << size);

@@ -4,7 +4,7 @@
 
 namespace pixelcloth::patches {
 
-GarmentFill::GarmentFill(const core::Garment& garment, std::vector<Patch> patches, const BasisOptions& options)
+GarmentFill::GarmentFill(const garment::Garment& garment, std::vector<Patch> patches, const BasisOptions& options)
     : patches_(std::move(patches)), numVertices_(garment.mesh.numVertices()) {
   meshes_.reserve(patches_.size());
   bases_.reserve(patches_.size());

@@ -1,4 +1,5 @@
 #include "pixelcloth/patches/patch.h"
+#include "pixelcloth/patches/frame.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,13 +18,13 @@ using Edge = std::pair<int, int>;
 Edge key(int a, int b) { return std::minmax(a, b); }
 
 /// UV of garment vertex v in layout l.
-Eigen::Vector2d uvOf(const core::Garment& garment, int v, int layout) {
+Eigen::Vector2d uvOf(const garment::Garment& garment, int v, int layout) {
   int row = garment.vertexUV(v, layout);
   return garment.mesh.UV.row(row).transpose();
 }
 }  // namespace
 
-std::vector<Patch> segmentPatches(const core::Garment& garment, const std::vector<std::pair<int, int>>& cuts) {
+std::vector<Patch> segmentPatches(const garment::Garment& garment, const std::vector<std::pair<int, int>>& cuts) {
   const core::Mesh& mesh = garment.mesh;
   std::set<Edge> cutSet;
   for (const auto& [a, b] : cuts) cutSet.insert(key(a, b));
@@ -97,7 +98,7 @@ std::vector<Patch> segmentPatches(const core::Garment& garment, const std::vecto
   return sorted;
 }
 
-PatchMesh patchMesh(const core::Garment& garment, const Patch& patch) {
+PatchMesh patchMesh(const garment::Garment& garment, const Patch& patch) {
   PatchMesh out;
   std::map<int, int> local;
   for (int v : patch.vertices) {
@@ -113,5 +114,18 @@ PatchMesh patchMesh(const core::Garment& garment, const Patch& patch) {
   for (int v : patch.interior) out.interior.push_back(local.at(v));
   return out;
 }
+
+Eigen::Vector2d patchPixelExtent(const garment::Garment& garment, const Patch& patch, int size) {
+  const ImageFrame frame = layoutFrame(garment, patch.layout, size);
+  Eigen::AlignedBox2d box;
+  for (int v : patch.vertices) {
+    const int row = garment.vertexUV(v, patch.layout);
+    PIXELCLOTH_CHECK(row >= 0, garment.name << ": patch " << patch.id << " uses vertex " << v << ", which layout "
+                                            << garment.layouts[patch.layout] << " lacks");
+    box.extend(Eigen::Vector2d(garment.mesh.UV.row(row).transpose()));
+  }
+  return box.sizes() / frame.metresPerPixel;
+}
+
 
 }  // namespace pixelcloth::patches

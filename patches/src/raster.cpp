@@ -71,7 +71,7 @@ SparseOperator assemble(int rows, int cols, const std::vector<PixelWeights>& pix
 
 }  // namespace
 
-RasterOperator buildRaster(const core::Garment& garment, int layout, const ImageFrame& frame,
+RasterOperator buildRaster(const garment::Garment& garment, int layout, const ImageFrame& frame,
                            const RasterOptions& options) {
   PIXELCLOTH_CHECK(layout >= 0 && layout < garment.numLayouts(),
                    garment.name << ": layout " << layout << " does not exist (" << garment.numLayouts() << " layouts)");
@@ -81,7 +81,7 @@ RasterOperator buildRaster(const core::Garment& garment, int layout, const Image
   return buildRaster(garment, layout, faces, frame, options);
 }
 
-RasterOperator buildRaster(const core::Garment& garment, int layout, const std::vector<int>& faces,
+RasterOperator buildRaster(const garment::Garment& garment, int layout, const std::vector<int>& faces,
                            const ImageFrame& frame, const RasterOptions& options) {
   options.validate();
   checkFrame(frame);
@@ -260,7 +260,7 @@ Eigen::MatrixXf RasterOperator::maskImage() const {
   return toImage(pixels, frame.width, frame.height);
 }
 
-SampleOperator buildSample(const core::Garment& garment, const RasterOperator& raster) {
+SampleOperator buildSample(const garment::Garment& garment, const RasterOperator& raster) {
   const ImageFrame& frame = raster.frame;
   checkFrame(frame);
   const int W = frame.width, H = frame.height;

@@ -12,8 +12,8 @@ namespace pixelcloth::sim {
 namespace {
 
 /// The pose a fraction `t` of the way from the rest pose: every joint rotation scaled along its own axis.
-core::Pose partialPose(const core::Pose& pose, double t) {
-  core::Pose result = core::Pose::identity();
+body::Pose partialPose(const body::Pose& pose, double t) {
+  body::Pose result = body::Pose::identity();
   for (size_t j = 0; j < pose.rotations.size(); ++j) {
     const Eigen::AngleAxisd full(pose.rotations[j]);
     result.rotations[j] = Eigen::AngleAxisd(t * full.angle(), full.axis()).toRotationMatrix();
@@ -22,7 +22,7 @@ core::Pose partialPose(const core::Pose& pose, double t) {
 }
 
 /// The largest joint rotation angle of a pose (degrees).
-double largestJointAngle(const core::Pose& pose) {
+double largestJointAngle(const body::Pose& pose) {
   double largest = 0;
   for (const Eigen::Matrix3d& rotation : pose.rotations)
     largest = std::max(largest, Eigen::AngleAxisd(rotation).angle() * 180.0 / M_PI);
@@ -43,7 +43,7 @@ void SimulationOptions::validate() const {
   PIXELCLOTH_CHECK(maxPenetration > 0, "simulation: max penetration must be positive, got " << maxPenetration);
 }
 
-std::vector<int> defaultPins(const core::Garment& garment) {
+std::vector<int> defaultPins(const garment::Garment& garment) {
   std::vector<int> pins;
   if (garment.name != "necktie") return pins;
   const double top = garment.mesh.V.col(1).maxCoeff();
@@ -52,7 +52,7 @@ std::vector<int> defaultPins(const core::Garment& garment) {
   return pins;
 }
 
-GarmentSimulator::GarmentSimulator(const core::Body& body, const core::Garment& garment, const cage::Dressing& dressing,
+GarmentSimulator::GarmentSimulator(const body::Body& body, const garment::Garment& garment, const cage::Dressing& dressing,
                                    const SimulationOptions& options, const Eigen::MatrixX3d* settled)
     : body_(body), garment_(garment), dressing_(dressing), options_(options) {
   options_.validate();
@@ -65,7 +65,7 @@ GarmentSimulator::GarmentSimulator(const core::Body& body, const core::Garment& 
 
   // One collider per body part, with its own compact vertex numbering.
   std::vector<Collider> colliders;
-  for (const core::BodyPart& part : body.parts) {
+  for (const body::BodyPart& part : body.parts) {
     std::vector<int> local(body.mesh.numVertices(), -1);
     std::vector<int>& vertices = partVertices_.emplace_back();
     Collider collider;
@@ -89,8 +89,8 @@ GarmentSimulator::GarmentSimulator(const core::Body& body, const core::Garment& 
   solver_->setColliders(std::move(colliders), dressing.part);
 
   // Pins keep their dressed offsets from the body.
-  const core::EmbeddedFrames frames = core::embeddedFrames(body.mesh.V, body.mesh.F, dressing.embedding);
-  const Eigen::MatrixX3d offsets = core::offsetsFromPositions(frames, dressing.relaxed);
+  const garment::EmbeddedFrames frames = garment::embeddedFrames(body.mesh.V, body.mesh.F, dressing.embedding);
+  const Eigen::MatrixX3d offsets = garment::offsetsFromPositions(frames, dressing.relaxed);
   const int pins = static_cast<int>(options_.pinned.size());
   restOffsets_.resize(pins, 3);
   pinEmbedding_.triangle.resize(pins);
@@ -106,7 +106,7 @@ GarmentSimulator::GarmentSimulator(const core::Body& body, const core::Garment& 
 
   // Settle the dressed garment under gravity in the rest pose; every pose starts from here.
   const auto start = std::chrono::steady_clock::now();
-  placeBody(core::Pose::identity());
+  placeBody(body::Pose::identity());
   rest_ = settled ? *settled : dressing.relaxed;
   PIXELCLOTH_CHECK(rest_.rows() == n, "simulation: the settled garment has " << rest_.rows() << " vertices, not " << n);
   RelaxReport report;
@@ -128,7 +128,7 @@ GarmentSimulator::GarmentSimulator(const core::Body& body, const core::Garment& 
 
 GarmentSimulator::~GarmentSimulator() = default;
 
-void GarmentSimulator::placeBody(const core::Pose& pose) {
+void GarmentSimulator::placeBody(const body::Pose& pose) {
   posedBody_ = body_.posedVertices(pose);
   std::vector<Eigen::MatrixX3d> placed;
   for (const std::vector<int>& vertices : partVertices_) {
@@ -138,15 +138,15 @@ void GarmentSimulator::placeBody(const core::Pose& pose) {
   }
   solver_->moveColliders(placed);
   if (!options_.pinned.empty()) {
-    const core::EmbeddedFrames frames = core::embeddedFrames(posedBody_, body_.mesh.F, pinEmbedding_);
-    solver_->setPinTargets(core::positionsFromOffsets(frames, restOffsets_));
+    const garment::EmbeddedFrames frames = garment::embeddedFrames(posedBody_, body_.mesh.F, pinEmbedding_);
+    solver_->setPinTargets(garment::positionsFromOffsets(frames, restOffsets_));
   }
 }
 
-SampleStats GarmentSimulator::measure(const Eigen::MatrixX3d& x) const {
-  SampleStats stats;
+data::SampleStats GarmentSimulator::measure(const Eigen::MatrixX3d& x) const {
+  data::SampleStats stats;
   if (!x.allFinite()) {
-    stats.rejection = Rejection::NotFinite;
+    stats.rejection = data::Rejection::NotFinite;
     return stats;
   }
   const Eigen::VectorXd ratio = solver_->areaRatios(x);
@@ -154,41 +154,41 @@ SampleStats GarmentSimulator::measure(const Eigen::MatrixX3d& x) const {
   stats.maxAreaRatio = ratio.maxCoeff();
   stats.maxPenetration = solver_->penetration(x).maxCoeff();
   if (stats.minAreaRatio < options_.minAreaRatio)
-    stats.rejection = Rejection::TriangleShrank;
+    stats.rejection = data::Rejection::TriangleShrank;
   else if (stats.maxAreaRatio > options_.maxAreaRatio)
-    stats.rejection = Rejection::TriangleGrew;
+    stats.rejection = data::Rejection::TriangleGrew;
   else if (stats.maxPenetration > options_.maxPenetration)
-    stats.rejection = Rejection::Penetrated;
+    stats.rejection = data::Rejection::Penetrated;
   return stats;
 }
 
-Sample GarmentSimulator::simulate(const core::Pose& pose) {
+data::Sample GarmentSimulator::simulate(const body::Pose& pose) {
   const auto start = std::chrono::steady_clock::now();
   const int steps = std::max(1, static_cast<int>(std::ceil(largestJointAngle(pose) / options_.stepDegrees)));
   Eigen::MatrixX3d x = rest_;
   int iterations = 0;
   RelaxReport report;
-  placeBody(core::Pose::identity());
+  placeBody(body::Pose::identity());
   for (int step = 1; step <= steps && x.allFinite(); ++step) {
     // The cloth rides with the body to the next pose (constant offsets in the embedded frames), so the solver only
     // relaxes what skinning gets wrong instead of having the arms drag the sleeves through contact.
     const Eigen::MatrixX3d offsets =
-        core::offsetsFromPositions(core::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), x);
+        garment::offsetsFromPositions(garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), x);
     placeBody(partialPose(pose, static_cast<double>(step) / steps));
-    x = core::positionsFromOffsets(core::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), offsets);
+    x = garment::positionsFromOffsets(garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), offsets);
     report = solver_->relax(x, step < steps ? options_.iterationsPerStep : options_.finalIterations);
     iterations += report.iterations;
   }
-  Sample sample;
+  data::Sample sample;
   sample.stats = measure(x);
   sample.stats.iterations = iterations;
   sample.stats.residual = report.residual;
   sample.pose = pose.toVector();
   if (garment_.name == "necktie") sample.pose = sample.pose.head(36).eval();
   sample.positions = x.cast<float>();
-  if (sample.stats.rejection != Rejection::NotFinite) {
-    const core::EmbeddedFrames frames = core::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding);
-    sample.offsets = core::offsetsFromPositions(frames, x).cast<float>();
+  if (sample.stats.rejection != data::Rejection::NotFinite) {
+    const garment::EmbeddedFrames frames = garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding);
+    sample.offsets = garment::offsetsFromPositions(frames, x).cast<float>();
   } else {
     sample.offsets = Eigen::MatrixX3f::Constant(x.rows(), 3, std::nanf(""));
   }

@@ -13,7 +13,7 @@
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/progress.h"
-#include "pixelcloth/sim/dataset.h"
+#include "pixelcloth/data/dataset.h"
 #include "pixelcloth/sim/pose_sampler.h"
 
 namespace pixelcloth::sim {
@@ -28,21 +28,21 @@ std::uint64_t mix(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-core::Body makeBody(const GenerateOptions& options, nlohmann::json& description) {
-  core::Body body;
+body::Body makeBody(const GenerateOptions& options, nlohmann::json& description) {
+  body::Body body;
   if (!options.bodyFolder.empty()) {
-    body = core::loadBody(options.bodyFolder);
+    body = body::loadBody(options.bodyFolder);
     description = {{"kind", "folder"}, {"folder", options.bodyFolder.string()}};
   } else {
-    core::MannequinOptions mannequin;
+    body::MannequinOptions mannequin;
     mannequin.shape = options.bodyShape;
     mannequin.edgeLength = options.mannequinEdge;
-    body = core::makeMannequin(mannequin);
+    body = body::makeMannequin(mannequin);
     description = {{"kind", "mannequin"}, {"shape", options.bodyShape}, {"edge_length", options.mannequinEdge}};
   }
   if (!options.corruptWeights.empty()) {
     body.weights =
-        core::corruptUpperArmWeights(body.skeleton, body.weights, options.corruptWeights, options.corruptFraction);
+        body::corruptUpperArmWeights(body.skeleton, body.weights, options.corruptWeights, options.corruptFraction);
     description["corrupt_weights"] = {{"mode", options.corruptWeights}, {"fraction", options.corruptFraction}};
   }
   return body;
@@ -73,7 +73,7 @@ nlohmann::json simulationSettings(const SimulationOptions& s) {
 /// Runs job(simulator, k) for every k in [0, count) on `threads` threads, the calling one with `first`, each other
 /// with its own simulator built from `first`'s settled drape (so a result does not depend on the thread). The first
 /// exception stops the others and is rethrown.
-void forEachOnSimulators(GarmentSimulator& first, const core::Body& body, const core::Garment& garment,
+void forEachOnSimulators(GarmentSimulator& first, const body::Body& body, const garment::Garment& garment,
                          const cage::Dressing& dressing, const SimulationOptions& options, int count, int threads,
                          const std::function<void(GarmentSimulator&, int)>& job) {
   std::atomic<int> next{0};
@@ -112,17 +112,17 @@ void GenerateOptions::validate() const {
   PIXELCLOTH_CHECK(maxAttempts >= 1, "generate: max attempts must be >= 1");
   PIXELCLOTH_CHECK(corruptWeights.empty() || corruptWeights == "torso" || corruptWeights == "torso+arm",
                    "generate: --corrupt-weights must be torso or torso+arm, got '" << corruptWeights << "'");
-  parseShard(shard);
+  data::parseShard(shard);
   simulation.validate();
 }
 
-core::Pose samplePose(const core::Body& body, const std::string& garment, std::uint64_t seed, int index, int attempt,
+body::Pose samplePose(const body::Body& body, const std::string& garment, std::uint64_t seed, int index, int attempt,
                       int* pruned) {
   PoseSamplerOptions options;
   options.seed = mix(mix(seed) ^ mix(static_cast<std::uint64_t>(index) * 1000003ULL + attempt));
   options.prune = garment != "necktie";  // the necktie keeps only the centre line: arm pruning would not matter
   PoseSampler sampler(body, options);
-  core::Pose pose = sampler.next();
+  body::Pose pose = sampler.next();
   if (pruned) *pruned = sampler.stats().rejectedArmInsideTorso;
   if (garment == "necktie")  // the necktie's pose vector is the centre line only
     for (size_t j = 4; j < pose.rotations.size(); ++j) pose.rotations[j].setIdentity();
@@ -134,24 +134,24 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
   options.validate();
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json bodyDescription;
-  const core::Body body = makeBody(options, bodyDescription);
-  const core::Garment garment = options.garment == "necktie" ? core::makeNecktie() : core::makeTShirt();
+  const body::Body body = makeBody(options, bodyDescription);
+  const garment::Garment garment = options.garment == "necktie" ? garment::makeNecktie() : garment::makeTShirt();
   if (options.simulation.pinned.empty()) options.simulation.pinned = defaultPins(garment);
 
-  DatasetSettings settings;
+  data::DatasetSettings settings;
   settings.garment = options.garment;
   settings.poseSize = options.garment == "necktie" ? 36 : 90;
   settings.vertexCount = garment.mesh.numVertices();
   settings.seed = options.seed;
   settings.count = options.count;
-  settings.shard = parseShard(options.shard);
+  settings.shard = data::parseShard(options.shard);
   settings.body = bodyDescription;
   settings.generator = simulationSettings(options.simulation);
   settings.source = "simulated";
 
   PIXELCLOTH_INFO("generate: dressing the " << options.garment << " on the body");
   const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), garment, cage::garmentCage(garment));
-  DatasetWriter writer(out, settings, body, garment, dressing);
+  data::DatasetWriter writer(out, settings, body, garment, dressing.relaxed, dressing.embedding);
   const std::vector<int> pending = writer.pending();
   GenerateReport report;
   report.resumed = writer.done();
@@ -174,10 +174,10 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
           bool done = false;
           for (int attempt = 0; attempt < options.maxAttempts && !done; ++attempt) {
             int pruned = 0;
-            const core::Pose pose = samplePose(body, options.garment, options.seed, index, attempt, &pruned);
-            for (int p = 0; p < pruned; ++p) writer.countRejection(Rejection::ArmInsideTorso);
-            const Sample sample = simulator.simulate(pose);
-            if (sample.stats.rejection != Rejection::None) {
+            const body::Pose pose = samplePose(body, options.garment, options.seed, index, attempt, &pruned);
+            for (int p = 0; p < pruned; ++p) writer.countRejection(data::Rejection::ArmInsideTorso);
+            const data::Sample sample = simulator.simulate(pose);
+            if (sample.stats.rejection != data::Rejection::None) {
               writer.countRejection(sample.stats.rejection);
               ++rejected;
               continue;
@@ -205,10 +205,10 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
 
 namespace pixelcloth::sim {
 
-std::vector<SampleStats> simulatePoses(const core::Body& body, const core::Garment& garment,
-                                       const cage::Dressing& dressing, const std::vector<core::Pose>& poses,
+std::vector<data::SampleStats> simulatePoses(const body::Body& body, const garment::Garment& garment,
+                                       const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
                                        const SimulationOptions& options, int threads, bool quiet) {
-  std::vector<SampleStats> stats(poses.size());
+  std::vector<data::SampleStats> stats(poses.size());
   if (poses.empty()) return stats;
   GarmentSimulator first(body, garment, dressing, options);
   std::unique_ptr<core::Progress> progress;

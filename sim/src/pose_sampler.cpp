@@ -43,21 +43,21 @@ void PoseSamplerOptions::validate() const {
   PIXELCLOTH_CHECK(maxAttempts > 0, "pose sampler: max attempts must be positive");
 }
 
-PoseSampler::PoseSampler(const core::Body& body, const PoseSamplerOptions& options)
+PoseSampler::PoseSampler(const body::Body& body, const PoseSamplerOptions& options)
     : body_(body), options_(options), rng_(options.seed) {
   options_.validate();
-  for (const core::BodyPart& part : body.parts)
+  for (const body::BodyPart& part : body.parts)
     if (part.name == "torso") torsoFaces_ = part.faces;
   PIXELCLOTH_CHECK(!options.prune || !torsoFaces_.empty(), "pose sampler: the body has no 'torso' part to prune with");
 }
 
-core::Pose PoseSampler::draw() {
+body::Pose PoseSampler::draw() {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::normal_distribution<double> normal(0.0, 1.0);
   Eigen::Matrix<double, 10, 3> degrees;
   for (int k = 0; k < 10; ++k) {
-    const std::string& joint = core::kPoseJoints[k];
-    const core::JointLimits& limits = core::jointLimits(joint);
+    const std::string& joint = body::kPoseJoints[k];
+    const body::JointLimits& limits = body::jointLimits(joint);
     for (int axis = 0; axis < 3; ++axis) {
       double lo = limits.lower[axis], hi = limits.upper[axis];
       double angle = 0;
@@ -75,14 +75,14 @@ core::Pose PoseSampler::draw() {
       degrees(k, axis) = angle;
     }
   }
-  return core::Pose::fromEulerDegrees(degrees);
+  return body::Pose::fromEulerDegrees(degrees);
 }
 
-bool PoseSampler::armInsideTorso(const core::Pose& pose) const {
+bool PoseSampler::armInsideTorso(const body::Pose& pose) const {
   if (torsoFaces_.empty()) return false;
-  const core::Skeleton& s = body_.skeleton;
+  const body::Skeleton& s = body_.skeleton;
   Eigen::MatrixX3d V = body_.posedVertices(pose);
-  core::JointTransforms t = core::forwardKinematics(s, pose);
+  body::JointTransforms t = body::forwardKinematics(s, pose);
   for (const char* side : {"l", "r"}) {
     int arm = s.index(std::string(side) + "_arm"), fore = s.index(std::string(side) + "_forearm");
     Eigen::Vector3d shoulder = t.positions.row(arm).transpose(), elbow = t.positions.row(fore).transpose();
@@ -100,9 +100,9 @@ bool PoseSampler::armInsideTorso(const core::Pose& pose) const {
   return false;
 }
 
-core::Pose PoseSampler::next() {
+body::Pose PoseSampler::next() {
   for (int attempt = 0; attempt < options_.maxAttempts; ++attempt) {
-    core::Pose pose = draw();
+    body::Pose pose = draw();
     if (options_.prune && armInsideTorso(pose)) {
       ++stats_.rejectedArmInsideTorso;
       continue;
@@ -113,8 +113,8 @@ core::Pose PoseSampler::next() {
   PIXELCLOTH_FAIL("pose sampler: " << options_.maxAttempts << " poses in a row had an arm inside the torso");
 }
 
-std::vector<core::Pose> PoseSampler::sample(int count) {
-  std::vector<core::Pose> poses;
+std::vector<body::Pose> PoseSampler::sample(int count) {
+  std::vector<body::Pose> poses;
   poses.reserve(count);
   for (int i = 0; i < count; ++i) poses.push_back(next());
   return poses;

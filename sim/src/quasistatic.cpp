@@ -1,10 +1,5 @@
 #include "pixelcloth/sim/quasistatic.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
-
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
@@ -12,19 +7,12 @@
 #include <cmath>
 
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/geometry.h"
+#include "pixelcloth/core/mesh_index.h"
 
 namespace pixelcloth::sim {
 
 namespace {
-
-using Kernel = CGAL::Simple_cartesian<double>;
-using Point = Kernel::Point_3;
-using Triangle = Kernel::Triangle_3;
-using TriangleIterator = std::vector<Triangle>::const_iterator;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-
-Point toPoint(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
 /// The point of a collider closest to a cloth vertex, and the contact it makes there.
 struct Closest {
@@ -48,8 +36,7 @@ struct ColliderState {
   std::vector<int> ringStart, ringFaces;  ///< faces around vertex v: ringFaces[ringStart[v] .. ringStart[v + 1])
   std::vector<int> across;                ///< 3 f + k: the face across the edge opposite corner k of f, or -1
   std::vector<bool> onBoundary;           ///< per vertex: on an edge with one face (body parts are open meshes)
-  std::vector<Triangle> triangles;
-  std::unique_ptr<Tree> tree;
+  std::unique_ptr<core::MeshIndex> index;  ///< built on first use after the vertices move
 
   explicit ColliderState(Collider collider) : mesh(std::move(collider)) {
     const int nv = static_cast<int>(mesh.V.rows()), nf = static_cast<int>(mesh.F.rows());
@@ -85,7 +72,7 @@ struct ColliderState {
         const double angle = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
         vertexNormals.row(mesh.F(f, k)) += angle * normals.row(f);
       }
-    tree.reset();
+    index.reset();
   }
 
   /// Closest point of face f to p, with the inside test of Baerentzen and Aanaes (2005): p is inside when it lies
@@ -128,20 +115,13 @@ struct ColliderState {
   /// Exact closest point (AABB tree). `hint`: a face near the answer (the vertex's last closest face), whose closest
   /// point starts the search with a small radius instead of the tree's own first guess.
   Closest global(const Eigen::Vector3d& p, int hint = -1) {
-    if (!tree) {
-      triangles.resize(mesh.F.rows());
-      for (int f = 0; f < mesh.F.rows(); ++f)
-        triangles[f] = Triangle(toPoint(mesh.V.row(mesh.F(f, 0))), toPoint(mesh.V.row(mesh.F(f, 1))),
-                                toPoint(mesh.V.row(mesh.F(f, 2))));
-      tree = std::make_unique<Tree>(triangles.cbegin(), triangles.cend());
-      tree->accelerate_distance_queries();
-    }
-    if (hint < 0)
-      return onFace(static_cast<int>(tree->closest_point_and_primitive(toPoint(p)).second - triangles.cbegin()), p);
+    if (!index) index = std::make_unique<core::MeshIndex>(mesh.V, mesh.F);
+    if (hint < 0) return onFace(index->closest(p).face, p);
     const Closest start = local(p, hint);
-    const auto found = tree->closest_point_and_primitive(
-        toPoint(p), std::make_pair(toPoint(start.point), triangles.cbegin() + start.face));
-    const int f = static_cast<int>(found.second - triangles.cbegin());
+    core::MeshHit near;
+    near.face = start.face;
+    near.point = start.point;
+    const int f = index->closest(p, near).face;
     return f == start.face ? start : onFace(f, p);
   }
 
@@ -392,9 +372,8 @@ QuasistaticSolver::QuasistaticSolver(const core::Mesh& cloth, const std::vector<
   s.restArea.resize(m);
   s.mass = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd vertexArea = Eigen::VectorXd::Zero(n);
-  std::vector<Eigen::Triplet<double>> stretch, laplace;
+  std::vector<Eigen::Triplet<double>> stretch;
   stretch.reserve(9 * m);
-  laplace.reserve(12 * m);
   Eigen::Matrix<double, 2, 3> edges;
   edges << -1, 1, 0, -1, 0, 1;
   for (int f = 0; f < m; ++f) {
@@ -412,24 +391,15 @@ QuasistaticSolver::QuasistaticSolver(const core::Mesh& cloth, const std::vector<
       vertexArea(cloth.F(f, a)) += area / 3.0;
       for (int b = 0; b < 3; ++b) stretch.emplace_back(cloth.F(f, a), cloth.F(f, b), block(a, b));
     }
-    // Cotangent Laplacian of the flat pattern triangle.
-    for (int k = 0; k < 3; ++k) {
-      const int i = cloth.F(f, (k + 1) % 3), j = cloth.F(f, (k + 2) % 3);
-      const Eigen::Vector2d e1 = u[(k + 1) % 3] - u[k], e2 = u[(k + 2) % 3] - u[k];
-      const double cot = e1.dot(e2) / std::abs(e1.x() * e2.y() - e1.y() * e2.x());
-      laplace.emplace_back(i, j, -0.5 * cot);
-      laplace.emplace_back(j, i, -0.5 * cot);
-      laplace.emplace_back(i, i, 0.5 * cot);
-      laplace.emplace_back(j, j, 0.5 * cot);
-    }
   }
   for (int v = 0; v < n; ++v)
     PIXELCLOTH_CHECK(vertexArea(v) > 0, "solver: cloth vertex " << v << " belongs to no triangle");
   s.mass = options_.density * vertexArea;
 
-  Eigen::SparseMatrix<double> K(n, n), L(n, n);
+  Eigen::SparseMatrix<double> K(n, n);
   K.setFromTriplets(stretch.begin(), stretch.end());
-  L.setFromTriplets(laplace.begin(), laplace.end());
+  // Bending: the squared cotangent Laplacian of the flat pattern (its sign does not matter).
+  const Eigen::SparseMatrix<double> L = core::cotangentLaplacian(cloth.UV, cloth.FUV, cloth.F, n);
   const Eigen::VectorXd inverseArea = vertexArea.cwiseInverse();
   s.bending = options_.bendStiffness * Eigen::SparseMatrix<double>(L.transpose() * inverseArea.asDiagonal() * L);
 
@@ -591,15 +561,8 @@ Eigen::VectorXd QuasistaticSolver::penetration(const Eigen::MatrixX3d& x) const 
 }
 
 Eigen::VectorXd QuasistaticSolver::areaRatios(const Eigen::MatrixX3d& x) const {
-  const Impl& s = *impl_;
-  Eigen::VectorXd ratio(s.F.rows());
-  for (int f = 0; f < s.F.rows(); ++f) {
-    const Eigen::Vector3d a = x.row(s.F(f, 0)), b = x.row(s.F(f, 1)), c = x.row(s.F(f, 2));
-    ratio(f) = 0.5 * (b - a).cross(c - a).norm() / s.restArea(f);
-  }
-  return ratio;
+  return core::triangleAreas(x, impl_->F).cwiseQuotient(impl_->restArea);
 }
-
 double QuasistaticSolver::energy(const Eigen::MatrixX3d& x) const {
   const Impl& s = *impl_;
   double e = 0;

@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "../core/test_util.h"
-#include "pixelcloth/core/embedding.h"
+#include "support/test_util.h"
+#include "pixelcloth/garment/embedding.h"
 #include "pixelcloth/core/exr_io.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
@@ -704,7 +704,7 @@ TEST_F(CliBodyTest, DressWritesShirtOnBodyWithLessAreaDistortionAfterRelaxation)
   EXPECT_TRUE(isPng(out / "area_distortion.png"));
   EXPECT_TRUE(isPng(out / "dressed.png"));
   const core::Mesh dressed = core::readMesh(out / "dressed.obj");
-  const core::Garment shirt = core::makeTShirt();
+  const garment::Garment shirt = garment::makeTShirt();
   EXPECT_EQ(dressed.numVertices(), shirt.mesh.numVertices());
   EXPECT_TRUE(dressed.hasUV());
   const nlohmann::json report = nlohmann::json::parse(readFile(out / "dressing.json"));
@@ -786,7 +786,7 @@ TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
 
 /// Smooth centimetre-sized offsets of the default T-shirt, #V x 3.
 Eigen::MatrixXf shirtOffsets() {
-  static const core::Garment shirt = core::makeTShirt();
+  static const garment::Garment shirt = garment::makeTShirt();
   Eigen::MatrixXf x(shirt.mesh.numVertices(), 3);
   for (int v = 0; v < x.rows(); ++v) {
     Eigen::Vector3d p = shirt.mesh.V.row(v);
@@ -866,12 +866,12 @@ class CliDatasetTest : public CliBodyTest {
     CliBodyTest::SetUp();
     if (HasFatalFailure()) return;
     work_ = dir("work");
-    tie_ = core::makeNecktie();
+    tie_ = garment::makeNecktie();
     fs::create_directories(work_ / "dressing");
     fs::copy(body_, work_ / "dressing" / "body", fs::copy_options::recursive);
     const core::Mesh body = core::readMesh(body_ / "body.obj");
     const Eigen::MatrixX3d u = Eigen::RowVector3d(1, 0, 0).replicate(tie_.mesh.numVertices(), 1);
-    core::saveEmbedding(work_ / "dressing", core::embedClosest(body.V, body.F, tie_.mesh.V, u));
+    garment::saveEmbedding(work_ / "dressing", garment::embedClosest(body.V, body.F, tie_.mesh.V, u));
     core::writeNpy(work_ / "dressing" / "rest_positions.npy", Eigen::MatrixXd(tie_.mesh.V));
     std::string csv = "# 36 numbers per frame\n";
     for (int i = 0; i < 3; ++i) {
@@ -889,7 +889,7 @@ class CliDatasetTest : public CliBodyTest {
   }
 
   fs::path work_;
-  core::Garment tie_;
+  garment::Garment tie_;
 };
 
 TEST_F(CliDatasetTest, ImportInfoCheckMergeImages) {

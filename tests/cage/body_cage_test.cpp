@@ -8,11 +8,13 @@
 #include <set>
 #include <sstream>
 
-#include "../core/fixtures.h"
-#include "pixelcloth/core/body.h"
+#include "support/fixtures.h"
+#include "pixelcloth/body/body.h"
 
 namespace pcg = pixelcloth::cage;
 namespace pc = pixelcloth::core;
+namespace pb = pixelcloth::body;
+namespace pg = pixelcloth::garment;
 
 using pixelcloth::testing::mannequin;
 
@@ -28,7 +30,7 @@ double curveLength(const pc::Mesh& mesh, const pcg::CageCurve& c) {
 }  // namespace
 
 TEST(BodyCage, CurvesFollowEdgesAndLoopsHaveBodySizedLengths) {
-  const pc::Body& body = mannequin();
+  const pb::Body& body = mannequin();
   pcg::Cage cage = pcg::bodyCage(body);
   EXPECT_NO_THROW(cage.validate(body.mesh.F, body.mesh.numVertices()));
   for (const char* name : {"neckline",
@@ -91,22 +93,22 @@ TEST(BodyCage, JunctionsCarryTheNamesOfTheCurvesThatMeet) {
 }
 
 #include "pixelcloth/cage/garment_cage.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 
 TEST(BodyCage, EveryBodyJunctionHasItsNamesakeOnTheShirt) {
   pcg::Cage body = pcg::bodyCage(mannequin());
-  pcg::Cage shirt = pcg::garmentCage(pc::makeTShirt());
+  pcg::Cage shirt = pcg::garmentCage(pg::makeTShirt());
   ASSERT_GE(body.nodes.size(), 20u);
   for (const pcg::CageNode& node : body.nodes) EXPECT_GE(shirt.findNode(node.name), 0) << node.name;
 }
 
 TEST(BodyCage, WorksOnAnImportedBody) {
   // The mannequin lowered into an A-pose, written as a mesh plus joints, imported back (arms rotated to the T-pose).
-  const pc::Body& original = mannequin();
-  pc::Pose pose = pc::armsLowered(35);
+  const pb::Body& original = mannequin();
+  pb::Pose pose = pb::armsLowered(35);
   pc::Mesh mesh = original.posedMesh(pose);
-  pc::JointPositions joints = pc::posedJoints(original, pose);
-  pc::Body imported = pc::importBody(mesh, joints, "apose.obj");
+  pb::JointPositions joints = pb::posedJoints(original, pose);
+  pb::Body imported = pb::importBody(mesh, joints, "apose.obj");
   pcg::Cage cage = pcg::bodyCage(imported);
   EXPECT_NO_THROW(cage.validate(imported.mesh.F, imported.mesh.numVertices()));
   EXPECT_EQ(cage.nodes.size(), pcg::bodyCage(original).nodes.size());

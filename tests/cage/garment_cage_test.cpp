@@ -7,13 +7,14 @@
 #include <map>
 #include <set>
 
-#include "cage_fixtures.h"
+#include "support/cage_fixtures.h"
 
 namespace pcg = pixelcloth::cage;
 namespace pc = pixelcloth::core;
+namespace pg = pixelcloth::garment;
 
 namespace {
-const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
+const pixelcloth::garment::Garment& shirt() { return pixelcloth::testing::tshirt(); }
 const pcg::Cage& shirtCage() { return pixelcloth::testing::tshirtCage(); }
 
 std::set<std::pair<int, int>> meshEdges(const Eigen::MatrixX3i& F) {
@@ -24,7 +25,7 @@ std::set<std::pair<int, int>> meshEdges(const Eigen::MatrixX3i& F) {
 }
 
 /// Layouts that have the mesh edge (a, b) as an edge of one of their faces.
-std::set<int> layoutsOfEdge(const pc::Garment& g, int a, int b) {
+std::set<int> layoutsOfEdge(const pg::Garment& g, int a, int b) {
   std::set<int> layouts;
   for (int f = 0; f < g.mesh.numFaces(); ++f)
     for (int k = 0; k < 3; ++k)
@@ -79,7 +80,7 @@ TEST(GarmentCage, CurvesRunAlongMeshEdgesAndValidate) {
 }
 
 TEST(GarmentCage, LoopsCloseThroughBothLayouts) {
-  const pc::Garment& g = shirt();
+  const pg::Garment& g = shirt();
   for (const char* name : {"chest", "waist", "bicep_left", "bicep_right"}) {
     const pcg::CageCurve* loop = shirtCage().findCurve(name);
     ASSERT_NE(loop, nullptr);
@@ -140,7 +141,7 @@ TEST(GarmentCage, NodesAreTheJunctions) {
 }
 
 TEST(GarmentCage, Necktie) {
-  const pc::Garment tie = pc::makeNecktie();
+  const pg::Garment tie = pg::makeNecktie();
   const pcg::Cage cage = pcg::garmentCage(tie);
   ASSERT_NE(cage.findCurve("outline"), nullptr);
   EXPECT_EQ(cage.findCurve("outline")->kind, pcg::CurveKind::Opening);

@@ -6,8 +6,8 @@
 
 #include <fstream>
 
-#include "../core/test_util.h"
-#include "cage_fixtures.h"
+#include "support/test_util.h"
+#include "support/cage_fixtures.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/cage/geodesic.h"
 #include "pixelcloth/cage/spline_solver.h"
@@ -17,7 +17,7 @@ namespace pcg = pixelcloth::cage;
 using pixelcloth::testing::inputErrorOf;
 
 namespace {
-const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
+const pixelcloth::garment::Garment& shirt() { return pixelcloth::testing::tshirt(); }
 const pcg::Cage& shirtCage() { return pixelcloth::testing::tshirtCage(); }
 
 /// The template shirt (3D, whose curves are not at their pattern lengths) scaled about its centre.

@@ -9,8 +9,8 @@
 #include <functional>
 #include <set>
 
-#include "../core/test_util.h"
-#include "cage_fixtures.h"
+#include "support/test_util.h"
+#include "support/cage_fixtures.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/cage/geodesic.h"
 #include "pixelcloth/core/json_io.h"
@@ -19,7 +19,7 @@ namespace pcg = pixelcloth::cage;
 using pixelcloth::testing::inputErrorOf;
 
 namespace {
-const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
+const pixelcloth::garment::Garment& shirt() { return pixelcloth::testing::tshirt(); }
 const pcg::Cage& shirtCage() { return pixelcloth::testing::tshirtCage(); }
 void writeText(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
 }  // namespace

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <random>
 
-#include "../core/fixtures.h"
-#include "../core/test_util.h"
+#include "support/fixtures.h"
+#include "support/test_util.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/cage/spline_residuals.h"
 

@@ -13,7 +13,7 @@
 
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
-#include "test_util.h"
+#include "support/test_util.h"
 
 namespace pc = pixelcloth::core;
 namespace fs = std::filesystem;

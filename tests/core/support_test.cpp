@@ -11,7 +11,7 @@
 #include "pixelcloth/core/image.h"
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/progress.h"
-#include "test_util.h"
+#include "support/test_util.h"
 
 namespace pc = pixelcloth::core;
 namespace fs = std::filesystem;
@@ -74,8 +74,8 @@ TEST(Progress, LineShowsCountRateAndEta) {
 TEST(Png, RoundTripAndCorruption) {
   fs::path dir = pixelcloth::testing::freshDir("png");
   pc::RgbImage image(37, 21, {10, 20, 30});
-  pc::fillTriangle(image, {2, 2}, {30, 4}, {10, 18}, {250, 0, 0});
-  pc::drawLine(image, {0, 20}, {36, 0}, {0, 0, 255}, 2.0);
+  for (int x = 2; x < 30; ++x) image.set(x, x / 2, {250, 0, 0});
+  image.blend(5, 17, {0, 0, 255}, 0.4);
   pc::writePng(dir / "a.png", image);
   pc::RgbImage back = pc::readPng(dir / "a.png");
   ASSERT_EQ(back.width, 37);
@@ -125,32 +125,6 @@ TEST(Mesh, ValidateNamesTheFault) {
   mesh.F << 0, 1, 2;
   mesh.V(2, 2) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(mesh.validate("x"), pc::InputError);
-}
-
-TEST(Text, DigitsAndLettersAreDrawnWithinTheirExtent) {
-  pixelcloth::core::RgbImage image(64, 32);
-  const Eigen::Vector2i extent = pixelcloth::core::textExtent("a_1", 2);
-  EXPECT_EQ(extent, Eigen::Vector2i(34, 14));  // 3 glyphs of 5 columns with 1 between, 7 rows, doubled
-  pixelcloth::core::drawText(image, {3, 4}, "a_1", {0, 0, 0}, 2);
-  int inside = 0, outside = 0;
-  for (int y = 0; y < image.height; ++y) {
-    for (int x = 0; x < image.width; ++x) {
-      const bool ink = image.at(x, y)[0] == 0;
-      const bool within = x >= 3 && x < 3 + extent.x() && y >= 4 && y < 4 + extent.y();
-      (within ? inside : outside) += ink;
-    }
-  }
-  EXPECT_GT(inside, 40);
-  EXPECT_EQ(outside, 0);
-  // '_' is the bottom row of its cell; '1' has its serif foot on the bottom row too.
-  EXPECT_EQ(image.at(3 + 12 + 1, 4 + 13)[0], 0);
-  EXPECT_EQ(image.at(3 + 12 + 1, 4 + 5)[0], 255);
-  // Unknown characters leave a blank; clipping at the border does not throw.
-  pixelcloth::core::RgbImage blank(16, 16);
-  pixelcloth::core::drawText(blank, {0, 0}, "#", {0, 0, 0}, 1);
-  pixelcloth::core::drawText(blank, {12, 12}, "88", {0, 0, 0}, 3);
-  EXPECT_EQ(blank.at(0, 0)[0], 255);
-  EXPECT_THROW(pixelcloth::core::drawText(blank, {0, 0}, "1", {0, 0, 0}, 0), pixelcloth::core::InputError);
 }
 
 TEST(Mesh, ClosestPointOnTriangleBeatsDenseSampling) {

@@ -10,19 +10,20 @@
 #include <limits>
 
 #include "pixelcloth/core/error.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 
 namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;
+namespace pg = pixelcloth::garment;
 
 namespace {
 
 /// The T-shirt cut along its armhole seams: 6 patches (per layout: torso and two sleeve halves).
 std::vector<pp::PatchMesh> shirtPatches() {
   static const std::vector<pp::PatchMesh> meshes = [] {
-    pc::Garment shirt = pc::makeTShirt();
+    pg::Garment shirt = pg::makeTShirt();
     std::vector<std::pair<int, int>> cuts;
-    for (const pc::Seam& seam : shirt.seams)
+    for (const pg::Seam& seam : shirt.seams)
       if (!seam.joinsLayouts)
         for (size_t i = 0; i + 1 < seam.vertices.size(); ++i) cuts.emplace_back(seam.vertices[i], seam.vertices[i + 1]);
     std::vector<pp::PatchMesh> out;
@@ -222,31 +223,4 @@ TEST(PatchBasis, RejectsBadInput) {
   EXPECT_THROW(pp::rectanglePatch(0.1, 0.1, 0, 4), pc::InputError);
 }
 
-#include "pixelcloth/patches/basis_figures.h"
 
-TEST(BasisFigures, EveryShapeFilledBothWays) {
-  pp::BasisFigureOptions options;
-  options.cells = 12;
-  options.pictureSize = 64;
-  std::vector<pp::BasisFigure> figures = pp::basisFigures(options);
-  ASSERT_EQ(figures.size(), 8u);
-  for (const pp::BasisFigure& figure : figures) {
-    SCOPED_TRACE(figure.name());
-    ASSERT_EQ(figure.height.size(), figure.patch.uv.rows());
-    Eigen::VectorXd expected =
-        pp::boundaryHeights(figure.patch, figure.shape, options.side, options.amplitude);  // boundary data kept
-    for (size_t j = 0; j < figure.patch.boundary.size(); ++j)
-      EXPECT_EQ(figure.height(figure.patch.boundary[j]), expected(j));
-    // Interior within the data's range (isotropic: maximum principle; anisotropic: small undershoot allowed).
-    const double slack = figure.anisotropic ? 0.25 * options.amplitude : 1e-12;
-    EXPECT_LE(figure.height.maxCoeff(), expected.maxCoeff() + slack);
-    EXPECT_GE(figure.height.minCoeff(), expected.minCoeff() - slack);
-    EXPECT_EQ(figure.heightMap.width, 64);
-    EXPECT_EQ(figure.shaded.height, 64);
-  }
-  pc::RgbImage sheet = pp::basisContactSheet(figures);
-  EXPECT_GT(sheet.width, 4 * 64);
-  EXPECT_GT(sheet.height, 4 * 64);
-  options.ratio = 0;
-  EXPECT_THROW(pp::basisFigures(options), pc::InputError);
-}

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "../core/test_util.h"
+#include "support/test_util.h"
 #include "pixelcloth/core/image.h"
 
 namespace pp = pixelcloth::patches;

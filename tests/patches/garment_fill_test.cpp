@@ -3,16 +3,17 @@
 
 #include <gtest/gtest.h>
 
-#include "../core/fixtures.h"
+#include "support/fixtures.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/error.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 
 namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;
+namespace pg = pixelcloth::garment;
 
 namespace {
-const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
+const pixelcloth::garment::Garment& shirt() { return pixelcloth::testing::tshirt(); }
 pp::GarmentFill shirtFill() {
   pixelcloth::cage::Cage cage = pixelcloth::cage::garmentCage(shirt());
   return pp::GarmentFill(shirt(), pp::segmentPatches(shirt(), pixelcloth::cage::cutEdges(cage)));
@@ -24,7 +25,7 @@ TEST(GarmentFill, KeepsTheCageAndReproducesFieldsLinearInEachLayout) {
   ASSERT_EQ(fill.patches().size(), 28u);
   // A field linear in the front layout's UVs on front vertices; every patch sees only its own layout's UVs, and a
   // harmonic fill reproduces linear boundary data exactly. Back-only vertices get another linear field.
-  const pc::Garment& g = shirt();
+  const pg::Garment& g = shirt();
   Eigen::MatrixX3d values(g.mesh.numVertices(), 3);
   for (int v = 0; v < g.mesh.numVertices(); ++v) {
     int layout = g.vertexUV(v, 0) >= 0 ? 0 : 1;

@@ -4,20 +4,20 @@
 
 #include <set>
 
-#include "../core/fixtures.h"
-#include "pixelcloth/core/garment.h"
+#include "support/fixtures.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/frame.h"
 #include "pixelcloth/patches/patch.h"
-#include "pixelcloth/patches/patch_picture.h"
 
 namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;
+namespace pg = pixelcloth::garment;
 
 namespace {
-const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
+const pixelcloth::garment::Garment& shirt() { return pixelcloth::testing::tshirt(); }
 /// Every edge of the garment's seams and cage lines (openings are layout boundaries anyway). The same set the cage
 /// module's cutEdges gives; built here because patches/ comes before cage/ in the module order.
-std::vector<std::pair<int, int>> garmentCuts(const pc::Garment& g) {
+std::vector<std::pair<int, int>> garmentCuts(const pg::Garment& g) {
   std::vector<std::pair<int, int>> cuts;
   auto add = [&](const std::vector<int>& chain, bool closed) {
     for (size_t i = 0; i + (closed ? 0 : 1) < chain.size(); ++i)
@@ -76,30 +76,15 @@ TEST(GarmentPatches, TShirtPatchesFitTheCrop) {
 }
 
 TEST(GarmentPatches, NecktieBands) {
-  const pc::Garment tie = pc::makeNecktie();
+  const pg::Garment tie = pg::makeNecktie();
   const std::vector<pp::Patch> patches = pp::segmentPatches(tie, garmentCuts(tie));
   EXPECT_EQ(patches.size(), 5u);
   for (const pp::Patch& p : patches) EXPECT_LE(pp::patchPixelExtent(tie, p, 512).maxCoeff(), 128.0) << p.id;
 }
 
-TEST(GarmentPatches, PictureShowsBothSides) {
-  std::vector<pp::PictureCurve> curves;
-  for (const auto& seam : shirt().seams) curves.push_back({seam.vertices, false, "seam"});
-  for (const auto& line : shirt().lines) curves.push_back({line.vertices, line.closed, line.kind});
-  const pc::RgbImage image = pp::renderPatches(shirt(), shirtPatches(), curves, 256);
-  EXPECT_GT(image.width, 2 * 256);
-  EXPECT_GT(image.height, 256);
-  // Patch tints are not white: most of the area inside each layout's frame centre is coloured.
-  const pc::Color white = {255, 255, 255};
-  int coloured = 0;
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) coloured += !std::equal(white.begin(), white.end(), image.at(x, y));
-  EXPECT_GT(coloured, image.width * image.height / 4);
-}
-
 TEST(GarmentPatches, IdsRunInRowsTopToBottomLeftToRight) {
   // Per side: sleeves and upper torso (6), chest to waist (4), waist to hem (4).
-  const pc::TShirtOptions o;
+  const pg::TShirtOptions o;
   const auto& patches = shirtPatches();
   for (int layout = 0; layout < 2; ++layout) {
     auto box = [&](int k) {

@@ -5,13 +5,14 @@
 
 #include <set>
 
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 
 namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;
+namespace pg = pixelcloth::garment;
 
 TEST(Segmentation, WithoutCutsEachLayoutIsOnePatch) {
-  pc::Garment shirt = pc::makeTShirt();
+  pg::Garment shirt = pg::makeTShirt();
   std::vector<pp::Patch> patches = pp::segmentPatches(shirt, {});
   ASSERT_EQ(patches.size(), 2u);  // front and back layouts
   size_t faces = 0;
@@ -23,9 +24,9 @@ TEST(Segmentation, WithoutCutsEachLayoutIsOnePatch) {
 }
 
 TEST(Segmentation, ArmholeSeamsCutTheSleevesOff) {
-  pc::Garment shirt = pc::makeTShirt();
+  pg::Garment shirt = pg::makeTShirt();
   std::vector<std::pair<int, int>> cuts;
-  for (const pc::Seam& seam : shirt.seams)
+  for (const pg::Seam& seam : shirt.seams)
     if (!seam.joinsLayouts)
       for (size_t i = 0; i + 1 < seam.vertices.size(); ++i) cuts.emplace_back(seam.vertices[i], seam.vertices[i + 1]);
   std::vector<pp::Patch> patches = pp::segmentPatches(shirt, cuts);
@@ -46,7 +47,7 @@ TEST(Segmentation, ArmholeSeamsCutTheSleevesOff) {
 #include "pixelcloth/patches/frame.h"
 
 TEST(Frame, LayoutFitsAndBothSidesShareTheScale) {
-  pc::Garment shirt = pc::makeTShirt();
+  pg::Garment shirt = pg::makeTShirt();
   pp::ImageFrame front = pp::layoutFrame(shirt, 0, 512), back = pp::layoutFrame(shirt, 1, 512);
   EXPECT_DOUBLE_EQ(front.metresPerPixel, back.metresPerPixel);
   for (int l = 0; l < 2; ++l) {

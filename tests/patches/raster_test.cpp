@@ -9,24 +9,25 @@
 #include <functional>
 #include <iostream>
 
-#include "../core/fixtures.h"
-#include "../core/test_util.h"
-#include "pixelcloth/core/garment.h"
+#include "support/fixtures.h"
+#include "support/test_util.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/frame.h"
 
 namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;
+namespace pg = pixelcloth::garment;
 using pixelcloth::testing::freshDir;
 using pixelcloth::testing::inputErrorOf;
 
 namespace {
-const pixelcloth::core::Garment& shirt() { return pixelcloth::testing::tshirt(); }
+const pixelcloth::garment::Garment& shirt() { return pixelcloth::testing::tshirt(); }
 
 using Field = std::function<double(const Eigen::Vector2d&)>;
 
 /// Per-vertex values of `field` evaluated at each vertex's UV in `layout` (0 for vertices not in it), #V x 3: the
 /// field, 2 * field, and -field.
-Eigen::MatrixXf vertexField(const pc::Garment& g, int layout, const Field& field) {
+Eigen::MatrixXf vertexField(const pg::Garment& g, int layout, const Field& field) {
   Eigen::MatrixXf x = Eigen::MatrixXf::Zero(g.mesh.numVertices(), 3);
   for (int v = 0; v < g.mesh.numVertices(); ++v) {
     int row = g.vertexUV(v, layout);

@@ -13,8 +13,8 @@ namespace {
 class TShirtSimulation : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    body_ = new core::Body(core::makeMannequin());
-    shirt_ = new core::Garment(core::makeTShirt());
+    body_ = new body::Body(body::makeMannequin());
+    shirt_ = new garment::Garment(garment::makeTShirt());
     dressing_ =
         new cage::Dressing(cage::dressGarment(*body_, cage::bodyCage(*body_), *shirt_, cage::garmentCage(*shirt_)));
     simulator_ = new GarmentSimulator(*body_, *shirt_, *dressing_);
@@ -26,26 +26,26 @@ class TShirtSimulation : public ::testing::Test {
     delete body_;
   }
   /// Both arms lowered by `degrees` at the shoulder joints (about the body's forward axis), the spine bent forward.
-  static core::Pose armsDown(double degrees) {
+  static body::Pose armsDown(double degrees) {
     Eigen::Matrix<double, 10, 3> euler = Eigen::Matrix<double, 10, 3>::Zero();
     euler(1, 0) = 15;        // spine: bend forward
     euler(5, 2) = -degrees;  // l_arm
     euler(8, 2) = degrees;   // r_arm
-    return core::Pose::fromEulerDegrees(euler);
+    return body::Pose::fromEulerDegrees(euler);
   }
-  static core::Body* body_;
-  static core::Garment* shirt_;
+  static body::Body* body_;
+  static garment::Garment* shirt_;
   static cage::Dressing* dressing_;
   static GarmentSimulator* simulator_;
 };
-core::Body* TShirtSimulation::body_ = nullptr;
-core::Garment* TShirtSimulation::shirt_ = nullptr;
+body::Body* TShirtSimulation::body_ = nullptr;
+garment::Garment* TShirtSimulation::shirt_ = nullptr;
 cage::Dressing* TShirtSimulation::dressing_ = nullptr;
 GarmentSimulator* TShirtSimulation::simulator_ = nullptr;
 
 TEST_F(TShirtSimulation, RestDrapeSettlesWithoutDistortionOrPenetration) {
-  const SampleStats& rest = simulator_->restStats();
-  EXPECT_EQ(rest.rejection, Rejection::None);
+  const data::SampleStats& rest = simulator_->restStats();
+  EXPECT_EQ(rest.rejection, data::Rejection::None);
   EXPECT_LT(rest.residual, 1e-4);
   EXPECT_LT(rest.maxPenetration, 0.002);
   EXPECT_GT(rest.minAreaRatio, 0.7);
@@ -53,9 +53,9 @@ TEST_F(TShirtSimulation, RestDrapeSettlesWithoutDistortionOrPenetration) {
 }
 
 TEST_F(TShirtSimulation, LoweredArmsCarryTheirSleevesAndASampleDependsOnlyOnItsPose) {
-  const Sample first = simulator_->simulate(armsDown(40));
+  const data::Sample first = simulator_->simulate(armsDown(40));
   ASSERT_TRUE(first.positions.allFinite());
-  EXPECT_EQ(first.stats.rejection, Rejection::None) << rejectionName(first.stats.rejection);
+  EXPECT_EQ(first.stats.rejection, data::Rejection::None) << data::rejectionName(first.stats.rejection);
   EXPECT_LT(first.stats.maxPenetration, 0.002);
   EXPECT_GT(first.stats.minAreaRatio, 0.25);
   EXPECT_LT(first.stats.maxAreaRatio, 2.0);
@@ -69,7 +69,7 @@ TEST_F(TShirtSimulation, LoweredArmsCarryTheirSleevesAndASampleDependsOnlyOnItsP
   EXPECT_LT(posedLowest, restLowest - 0.05);
   // Another pose in between changes nothing: the same pose gives the same shirt.
   simulator_->simulate(armsDown(-30));
-  const Sample again = simulator_->simulate(armsDown(40));
+  const data::Sample again = simulator_->simulate(armsDown(40));
   EXPECT_EQ((again.positions - first.positions).cwiseAbs().maxCoeff(), 0.0f);
   // Nor does the simulator: another one built from the same settled drape (as each generate thread is).
   GarmentSimulator other(*body_, *shirt_, *dressing_, {}, &simulator_->restDrape());

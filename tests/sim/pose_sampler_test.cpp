@@ -5,17 +5,18 @@
 
 #include <cmath>
 
-#include "pixelcloth/core/body.h"
+#include "pixelcloth/body/body.h"
 
 namespace pc = pixelcloth::core;
 namespace ps = pixelcloth::sim;
+namespace pb = pixelcloth::body;
 
 namespace {
-const pc::Body& body() {
-  static const pc::Body b = [] {
-    pc::MannequinOptions options;
+const pb::Body& body() {
+  static const pb::Body b = [] {
+    pb::MannequinOptions options;
     options.edgeLength = 0.015;
-    return pc::makeMannequin(options);
+    return pb::makeMannequin(options);
   }();
   return b;
 }
@@ -30,7 +31,7 @@ TEST(PoseSampler, DistributionsFollowTheAppendix) {
   double sinAltitude = 0, azimuth = 0, spineFlexion = 0, spineExtension = 0;
   int flexed = 0, extended = 0;
   for (int i = 0; i < n; ++i) {
-    pc::Pose pose = sampler.draw();
+    pb::Pose pose = sampler.draw();
     EXPECT_TRUE(pose.withinLimits(1e-6));
     Eigen::Matrix<double, 10, 3> e = pose.toEulerDegrees();
     sinAltitude += std::sin(e(5, 2) * kDegree) / n;  // l_arm altitude
@@ -43,14 +44,14 @@ TEST(PoseSampler, DistributionsFollowTheAppendix) {
       ++extended;
     }
   }
-  const pc::JointLimits& arm = pc::jointLimits("l_arm");
+  const pb::JointLimits& arm = pb::jointLimits("l_arm");
   // Altitude uniform in sine space: the mean of sin(z) is the middle of [sin(lo), sin(hi)] (0 for +-90 degrees).
   EXPECT_NEAR(sinAltitude, 0.5 * (std::sin(arm.lower.z() * kDegree) + std::sin(arm.upper.z() * kDegree)), 0.03);
   // Azimuth uniform: mean at the middle of its range.
   EXPECT_NEAR(azimuth, 0.5 * (arm.lower.y() + arm.upper.y()), 4.0);
   // Centre line: two half-normals with sigma = 0.5 x each side's limit, chosen with equal probability; the mean of a
   // half-normal (clamped at 2 sigma) is about 0.75 sigma.
-  const pc::JointLimits& spine = pc::jointLimits("spine");
+  const pb::JointLimits& spine = pb::jointLimits("spine");
   EXPECT_NEAR(static_cast<double>(flexed) / n, 0.5, 0.03);
   EXPECT_NEAR(spineFlexion / flexed, 0.5 * spine.upper.x() * 0.75, 0.1 * spine.upper.x());
   EXPECT_NEAR(spineExtension / extended, 0.5 * spine.lower.x() * 0.75, 0.1 * -spine.lower.x());
@@ -60,21 +61,21 @@ TEST(PoseSampler, SeededAndPruned) {
   ps::PoseSamplerOptions options;
   options.seed = 5;
   ps::PoseSampler a(body(), options), b(body(), options);
-  std::vector<pc::Pose> first = a.sample(40), second = b.sample(40);
+  std::vector<pb::Pose> first = a.sample(40), second = b.sample(40);
   for (size_t i = 0; i < first.size(); ++i) EXPECT_EQ(first[i].toVector(), second[i].toVector());
-  for (const pc::Pose& pose : first) EXPECT_FALSE(a.armInsideTorso(pose));
+  for (const pb::Pose& pose : first) EXPECT_FALSE(a.armInsideTorso(pose));
   EXPECT_EQ(a.stats().accepted, 40);
   RecordProperty("rejected_of_40", std::to_string(a.stats().rejectedArmInsideTorso));
 }
 
 TEST(PoseSampler, AnArmThroughTheChestIsPrunedAndTheRestPoseIsNot) {
   ps::PoseSampler sampler(body());
-  EXPECT_FALSE(sampler.armInsideTorso(pc::Pose::identity()));
+  EXPECT_FALSE(sampler.armInsideTorso(pb::Pose::identity()));
   Eigen::Matrix<double, 10, 3> degrees = Eigen::Matrix<double, 10, 3>::Zero();
   degrees(5, 1) = 180;  // the left arm swung round to point across the chest, through the torso
   degrees(5, 2) = -15;
-  EXPECT_TRUE(sampler.armInsideTorso(pc::Pose::fromEulerDegrees(degrees)));
+  EXPECT_TRUE(sampler.armInsideTorso(pb::Pose::fromEulerDegrees(degrees)));
   degrees.setZero();
   degrees(5, 2) = 60;  // raised: outside
-  EXPECT_FALSE(sampler.armInsideTorso(pc::Pose::fromEulerDegrees(degrees)));
+  EXPECT_FALSE(sampler.armInsideTorso(pb::Pose::fromEulerDegrees(degrees)));
 }

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../core/test_util.h"
+#include "support/test_util.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/mesh.h"
 

@@ -1,7 +1,7 @@
 #pragma once
 
 #include "pixelcloth/cage/cage.h"
-#include "pixelcloth/core/body.h"
+#include "pixelcloth/body/body.h"
 #include "pixelcloth/core/image.h"
 
 namespace pixelcloth::cage {
@@ -27,10 +27,6 @@ struct BodyCageOptions {
 /// mesh edges through its landmarks, penalised for leaving the curve's guiding plane. Curves that meet share the
 /// landmark vertex where they meet; nodes are those shared landmarks, named like `junctions()`. Works for the built-in
 /// mannequin and for imported bodies (T-pose, arms along x). Throws InputError when a landmark cannot be found.
-Cage bodyCage(const core::Body& body, const BodyCageOptions& options = {});
-
-/// Picture of a cage on its mesh: front, back and three-quarter views, curves coloured by kind (loops red,
-/// centre lines blue, seams green, openings black, splits orange), nodes as dots; only parts facing the camera drawn.
-core::RgbImage renderCageOnMesh(const core::Mesh& mesh, const Cage& cage, int panelSize = 420);
+Cage bodyCage(const body::Body& body, const BodyCageOptions& options = {});
 
 }  // namespace pixelcloth::cage

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "pixelcloth/cage/cage.h"
-#include "pixelcloth/core/body.h"
-#include "pixelcloth/core/embedding.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/body/body.h"
+#include "pixelcloth/garment/embedding.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/image.h"
 
 namespace pixelcloth::cage {
@@ -33,7 +33,7 @@ struct Dressing {
   Eigen::MatrixX3d morphed;   ///< #V x 3: cage morphed onto the body cage, carried inside by a Poisson solve
   Eigen::MatrixX3d pushed;    ///< #V x 3: `morphed` with vertices inside the body moved out to the surface
   Eigen::MatrixX3d relaxed;   ///< #V x 3: after edge-length equalisation on the body: the dressed garment
-  core::Embedding embedding;  ///< every cloth vertex of `relaxed`, embedded in a body triangle
+  garment::Embedding embedding;  ///< every cloth vertex of `relaxed`, embedded in a body triangle
   /// #V: index into Body::parts of the part each cloth vertex collides with: among the parts that hold its embedding
   /// triangle, the arm part of the sleeve's side for a vertex of a sleeve panel ("left_sleeve_*" -> "left_arm"),
   /// else "torso"; the first part holding the triangle when neither applies.
@@ -55,21 +55,14 @@ struct Dressing {
 /// and all interior vertices follow through a Poisson solve on the garment mesh; then push-out, relaxation and
 /// embedding. A garment none of whose curves have a body counterpart (the necktie) keeps its rest placement, pushed
 /// out of the body. Throws InputError when the cages do not fit the meshes or the result is not finite.
-Dressing dressGarment(const core::Body& body, const Cage& bodyCage, const core::Garment& garment,
+Dressing dressGarment(const body::Body& body, const Cage& bodyCage, const garment::Garment& garment,
                       const Cage& garmentCage, const DressingOptions& options = {});
 
 /// The pattern's u axis carried onto the 3D surface `positions` (#V x 3), per vertex (#V x 3, not normalised): per face
 /// the first column of the deformation gradient F = [x1 - x0, x2 - x0] [uv1 - uv0, uv2 - uv0]^-1, averaged with
 /// pattern-area weights over the vertex's faces in its first layout only (the lowest l with vertexUV(v, l) >= 0): the
 /// back layout's u axis may point the opposite way in 3D, so averaging across a side seam would cancel. The
-/// u-directions to embed a dressed garment with (core::embedClosest). Throws InputError when sizes disagree.
-Eigen::MatrixX3d patternUDirections(const core::Garment& garment, const Eigen::MatrixX3d& positions);
-
-/// Per face (#F): 3D area of the triangle in `positions` (#V x 3) over its area in pattern space.
-Eigen::VectorXd areaRatios(const core::Garment& garment, const Eigen::MatrixX3d& positions);
-
-/// Area distortion in pattern space, before and after relaxation side by side: faces coloured by
-/// log2(3D area / pattern area), red for stretch, blue for compression, white for none; with a colour bar.
-core::RgbImage renderAreaDistortion(const core::Garment& garment, const Dressing& dressing, int pixelsPerMetre = 800);
+/// u-directions to embed a dressed garment with (garment::embedClosest). Throws InputError when sizes disagree.
+Eigen::MatrixX3d patternUDirections(const garment::Garment& garment, const Eigen::MatrixX3d& positions);
 
 }  // namespace pixelcloth::cage

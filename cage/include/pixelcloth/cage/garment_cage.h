@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "pixelcloth/cage/cage.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 
 namespace pixelcloth::cage {
 
@@ -18,7 +18,7 @@ namespace pixelcloth::cage {
 ///    Loops through both layouts; centre_front, centre_back: CentreLine; side_panel_*, tie_band_*: Split).
 /// Nodes are `junctions(curves)`. The result is validated against the garment mesh (throws InputError if a curve
 /// leaves the mesh edges).
-Cage garmentCage(const core::Garment& garment);
+Cage garmentCage(const garment::Garment& garment);
 
 /// The mesh edges the patches are cut along: every edge of every curve (`cage.edges()`), for
 /// `patches::segmentPatches`.

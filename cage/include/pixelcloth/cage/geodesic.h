@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "pixelcloth/cage/cage.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 
 namespace pixelcloth::cage {
 
@@ -24,11 +24,11 @@ RestLengths restLengthsFromName(const std::string& name, const std::string& cont
 
 /// Length in pattern space of the mesh edge (a, b): the UV distance in the first layout that holds both vertices.
 /// Seams stitched across layouts have the same length in both. Throws InputError when no layout holds both.
-double patternEdgeLength(const core::Garment& garment, int a, int b);
+double patternEdgeLength(const garment::Garment& garment, int a, int b);
 
 /// Cumulative rest arc length at each vertex of `curve`, metres: n entries for an open curve (first 0), n + 1 for a
 /// closed one (the last is the whole loop, back at the first vertex). From pattern-space edge lengths.
-std::vector<double> patternArcLengths(const core::Garment& garment, const CageCurve& curve);
+std::vector<double> patternArcLengths(const garment::Garment& garment, const CageCurve& curve);
 /// The same from the 3D polyline through `V` (#V x 3).
 std::vector<double> polylineArcLengths(const Eigen::Ref<const Eigen::MatrixX3d>& V, const CageCurve& curve);
 

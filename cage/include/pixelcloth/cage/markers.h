@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "pixelcloth/cage/cage.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 
 namespace pixelcloth::cage {
 
@@ -35,7 +35,7 @@ struct MarkerSet {
   /// `garment.name`, a vertex is out of range, a curve or node is unknown to `cage`, a curve marker's vertex is not on
   /// its curve or a node marker's vertex is not its node's, names repeat, a marker names both or neither of curve and
   /// node, a position is not finite, or (when `requirePositions`) a position is missing.
-  void validate(const core::Garment& garment, const Cage& cage, const std::string& context,
+  void validate(const garment::Garment& garment, const Cage& cage, const std::string& context,
                 bool requirePositions) const;
 };
 
@@ -52,7 +52,7 @@ struct MarkerOptions {
 /// `options.spacing` apart in rest arc length (pattern-space lengths, `patternArcLengths` in geodesic.h) between the
 /// nodes that lie on that curve (a closed curve without nodes starts at its first vertex), and always at least three
 /// markers on a closed curve (what its spline needs). Positions are NaN.
-MarkerSet defineMarkers(const core::Garment& garment, const Cage& cage, const MarkerOptions& options = {});
+MarkerSet defineMarkers(const garment::Garment& garment, const Cage& cage, const MarkerOptions& options = {});
 
 /// How marker positions are taken from ground truth to mimic capture.
 struct CaptureOptions {

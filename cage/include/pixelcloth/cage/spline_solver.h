@@ -10,7 +10,7 @@
 #include "pixelcloth/cage/geodesic.h"
 #include "pixelcloth/cage/length_model.h"
 #include "pixelcloth/cage/markers.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 
 namespace pixelcloth::cage {
 
@@ -106,7 +106,7 @@ class CageSplineSolver {
  public:
   /// `restPositions` (#V x 3, e.g. the dressed garment) is used for RestLengths::Polyline and Geodesic and may be
   /// empty for Pattern. Throws InputError for invalid options or sizes.
-  CageSplineSolver(const core::Garment& garment, const Cage& cage, const Eigen::MatrixX3d& restPositions,
+  CageSplineSolver(const garment::Garment& garment, const Cage& cage, const Eigen::MatrixX3d& restPositions,
                    const SplineOptions& options = {});
   ~CageSplineSolver();
   CageSplineSolver(CageSplineSolver&&) noexcept;

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "pixelcloth/core/exr_io.h"
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/image.h"
 #include "pixelcloth/patches/frame.h"
 #include "pixelcloth/patches/patch.h"
@@ -48,23 +48,10 @@ void writeClothImage(const std::filesystem::path& path, const ClothImage& image)
 /// channel.
 ClothImage readClothImage(const std::filesystem::path& path);
 
-/// How PNG previews show a cloth image.
-struct PreviewOptions {
-  /// Offsets in [-range, range] (metres) map to [0, 255] per channel (0 -> 128); 0: per channel, the largest |value|
-  /// over the non-empty pixels of every layer (at least 1e-6).
-  float range = 0;
-  float paddingBrightness = 0.55f;  ///< padding pixels are this fraction of their colour (dimmer), in [0, 1]
-};
-
-/// PNG preview in the paper's style: RGB = (du, dv, dn) mapped symmetrically around 0 to [0, 255], padding dimmer,
-/// empty pixels white; layers side by side left to right in `layers` order, no gap (so pixel (x, y) of layer l is
-/// preview pixel (l * width + x, y)).
-core::RgbImage renderClothImage(const ClothImage& image, const PreviewOptions& options = {});
-
 /// The frame of one layout in a width x height cloth image (non-square allowed, e.g. the necktie's 64 x 256): every
 /// layout of the garment at the same scale, the largest at which each layout's UV box fits inside (1 - 2 * margin) of
 /// both image dimensions, centred. For width == height this is `layoutFrame(garment, layout, size, margin)`.
-ImageFrame clothImageFrame(const core::Garment& garment, int layout, int width, int height,
+ImageFrame clothImageFrame(const garment::Garment& garment, int layout, int width, int height,
                            double margin = kLayoutMargin);
 
 /// Options of whole-garment cloth images.
@@ -81,7 +68,7 @@ struct ClothImageOptions {
 class ClothImager {
  public:
   /// Builds the operators of every layout of `garment`.
-  explicit ClothImager(const core::Garment& garment, const ClothImageOptions& options = {});
+  explicit ClothImager(const garment::Garment& garment, const ClothImageOptions& options = {});
 
   /// Cloth image of per-vertex offsets: `offsets` #V x 3 (du, dv, dn), metres. Throws `InputError` for a wrong shape.
   ClothImage rasterize(const Eigen::Ref<const Eigen::MatrixXf>& offsets) const;
@@ -117,7 +104,7 @@ struct PatchCrop {
 
 /// The crop of `patch`: centred on the patch's UV bounding box in the `imageSize` frame of its layout (`layoutFrame`),
 /// `cropSize` pixels square, and the raster operator of the patch's faces in it. Throws `InputError` for bad sizes.
-PatchCrop cropFrame(const core::Garment& garment, const Patch& patch, int imageSize = 512, int cropSize = 160,
+PatchCrop cropFrame(const garment::Garment& garment, const Patch& patch, int imageSize = 512, int cropSize = 160,
                     const RasterOptions& options = {});
 
 }  // namespace pixelcloth::patches

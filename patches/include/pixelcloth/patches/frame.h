@@ -2,7 +2,7 @@
 
 #include <Eigen/Core>
 
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 
 namespace pixelcloth::patches {
 
@@ -36,6 +36,6 @@ inline constexpr double kLayoutMargin = 0.13;
 /// The frame of one layout in a size x size image: the layout's UV bounding box, centred, its longer side
 /// covering (1 - 2 * margin) of the image. The T-shirt's front and back layouts get the same scale (the larger
 /// of the two), so a pixel is the same size of cloth on both sides.
-ImageFrame layoutFrame(const core::Garment& garment, int layout, int size, double margin = kLayoutMargin);
+ImageFrame layoutFrame(const garment::Garment& garment, int layout, int size, double margin = kLayoutMargin);
 
 }  // namespace pixelcloth::patches

@@ -3,7 +3,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/basis.h"
 #include "pixelcloth/patches/patch.h"
 
@@ -16,7 +16,7 @@ namespace pixelcloth::patches {
 class GarmentFill {
  public:
   /// `patches` from segmentPatches(garment, cage cuts); bases built with `options` (isotropic by default).
-  GarmentFill(const core::Garment& garment, std::vector<Patch> patches, const BasisOptions& options = {});
+  GarmentFill(const garment::Garment& garment, std::vector<Patch> patches, const BasisOptions& options = {});
 
   /// `values` #V x 3 (per-vertex offsets or positions); only the values at patch-boundary vertices are read.
   /// Returns #V x 3 with every interior vertex filled. Throws InputError when the row count is not #V.

@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 
 namespace pixelcloth::patches {
 
@@ -33,9 +33,13 @@ struct PatchMesh {
 /// Splits every layout of `garment` into patches along `cuts`: faces are connected across a mesh edge unless the
 /// edge is one of `cuts` (pairs of garment vertices, any order) or a layout boundary. Each connected set of faces
 /// becomes a patch. Throws InputError if a patch's boundary is not one simple loop (e.g. a cut that ends inside).
-std::vector<Patch> segmentPatches(const core::Garment& garment, const std::vector<std::pair<int, int>>& cuts);
+std::vector<Patch> segmentPatches(const garment::Garment& garment, const std::vector<std::pair<int, int>>& cuts);
 
 /// The patch's own mesh: its faces in the UV space of its layout, with local indices.
-PatchMesh patchMesh(const core::Garment& garment, const Patch& patch);
+PatchMesh patchMesh(const garment::Garment& garment, const Patch& patch);
+
+/// Pixel extent (width, height) of a patch's pattern-space bounding box in its layout's `size` x `size` cloth image
+/// (`layoutFrame(garment, patch.layout, size)`): what must fit in 128 px for a 160 px crop with 16 px of context.
+Eigen::Vector2d patchPixelExtent(const garment::Garment& garment, const Patch& patch, int size = 512);
 
 }  // namespace pixelcloth::patches

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "pixelcloth/core/garment.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/frame.h"
 
 namespace pixelcloth::patches {
@@ -69,11 +69,11 @@ struct RasterOperator {
 /// closest boundary edge), so images continue smoothly past the boundary; other pixels get empty rows. Per-triangle
 /// bounding-box scan for inside pixels, per-boundary-edge scan of nearby pixels for padding. Throws `InputError` for a
 /// bad layout, an empty frame, or bad options.
-RasterOperator buildRaster(const core::Garment& garment, int layout, const ImageFrame& frame,
+RasterOperator buildRaster(const garment::Garment& garment, int layout, const ImageFrame& frame,
                            const RasterOptions& options = {});
 
 /// Same, restricted to a subset of the layout's faces (a patch): padding is measured from the subset's boundary.
-RasterOperator buildRaster(const core::Garment& garment, int layout, const std::vector<int>& faces,
+RasterOperator buildRaster(const garment::Garment& garment, int layout, const std::vector<int>& faces,
                            const ImageFrame& frame, const RasterOptions& options = {});
 
 /// Bilinear sampling of an image at the cloth pixels of one layout: values = matrix * image.
@@ -100,7 +100,7 @@ struct SampleOperator {
 /// "taps inside": vertices whose 4 bilinear pixels are all inside (linear fields exact to float precision there);
 /// "all" adds boundary vertices, whose taps include padding pixels holding the closest boundary value rather than the
 /// field's extension (an error of up to ~0.5 px times the gradient).
-SampleOperator buildSample(const core::Garment& garment, const RasterOperator& raster);
+SampleOperator buildSample(const garment::Garment& garment, const RasterOperator& raster);
 
 /// A (width * height) pixel column as a height x width image, and back.
 Eigen::MatrixXf toImage(const Eigen::Ref<const Eigen::VectorXf>& pixels, int width, int height);

@@ -5,11 +5,11 @@
 #include <vector>
 
 #include "pixelcloth/cage/dressing.h"
-#include "pixelcloth/core/body.h"
-#include "pixelcloth/core/garment.h"
-#include "pixelcloth/core/skeleton.h"
+#include "pixelcloth/body/body.h"
+#include "pixelcloth/garment/garment.h"
+#include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/sim/quasistatic.h"
-#include "pixelcloth/sim/sample.h"
+#include "pixelcloth/data/sample.h"
 
 namespace pixelcloth::sim {
 
@@ -33,7 +33,7 @@ struct SimulationOptions {
 
 /// The vertices a garment is held by: for the necktie those within 4 cm of the top of its rest placement (the knot
 /// end, which hangs from the collar); none for the T-shirt, which rests on the shoulders.
-std::vector<int> defaultPins(const core::Garment& garment);
+std::vector<int> defaultPins(const garment::Garment& garment);
 
 /// Quasistatic drape of one garment on one body for any pose (DESIGN.md "Simulation"). Built once per garment and
 /// body: the system is factored and the dressed garment settled under gravity in the rest pose; `simulate` then
@@ -46,34 +46,34 @@ std::vector<int> defaultPins(const core::Garment& garment);
 class GarmentSimulator {
  public:
   /// `settled`: the rest drape of another simulator of the same garment, body and options (skips settling again).
-  GarmentSimulator(const core::Body& body, const core::Garment& garment, const cage::Dressing& dressing,
+  GarmentSimulator(const body::Body& body, const garment::Garment& garment, const cage::Dressing& dressing,
                    const SimulationOptions& options = {}, const Eigen::MatrixX3d* settled = nullptr);
   ~GarmentSimulator();
 
   /// Drapes the garment on the body in `pose`. Never throws for a hard pose: a sample that fails the acceptance test
   /// comes back with `stats.rejection` set (positions still filled for inspection).
-  Sample simulate(const core::Pose& pose);
+  data::Sample simulate(const body::Pose& pose);
 
   /// The garment settled in the rest pose (#V x 3).
   const Eigen::MatrixX3d& restDrape() const { return rest_; }
   /// Statistics of the rest settle.
-  const SampleStats& restStats() const { return restStats_; }
+  const data::SampleStats& restStats() const { return restStats_; }
 
  private:
-  void placeBody(const core::Pose& pose);
-  SampleStats measure(const Eigen::MatrixX3d& x) const;
+  void placeBody(const body::Pose& pose);
+  data::SampleStats measure(const Eigen::MatrixX3d& x) const;
 
-  const core::Body& body_;
-  const core::Garment& garment_;
+  const body::Body& body_;
+  const garment::Garment& garment_;
   const cage::Dressing& dressing_;
   SimulationOptions options_;
   std::unique_ptr<QuasistaticSolver> solver_;
   std::vector<std::vector<int>> partVertices_;  ///< per body part, its body vertices (collider vertex order)
   Eigen::MatrixX3d restOffsets_;                ///< offsets of the pinned vertices in the rest pose
-  core::Embedding pinEmbedding_;                ///< the embedding of the pinned vertices alone
+  garment::Embedding pinEmbedding_;                ///< the embedding of the pinned vertices alone
   Eigen::MatrixX3d rest_;
   Eigen::MatrixX3d posedBody_;
-  SampleStats restStats_;
+  data::SampleStats restStats_;
 };
 
 }  // namespace pixelcloth::sim

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <string>
 
-#include "pixelcloth/core/body.h"
-#include "pixelcloth/core/skeleton.h"
+#include "pixelcloth/body/body.h"
+#include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/sim/garment_sim.h"
 
 namespace pixelcloth::sim {
@@ -18,7 +18,7 @@ struct GenerateOptions {
   std::string shard = "0/1";         ///< "K/N": this job's slice of [0, count)
   std::filesystem::path bodyFolder;  ///< a body folder (`pixelcloth body`); empty: the built-in mannequin
   double bodyShape = 0;              ///< mannequin girth in [-1, 2] (ignored with a body folder)
-  std::string corruptWeights;        ///< "", "torso" or "torso+arm" (core::corruptUpperArmWeights)
+  std::string corruptWeights;        ///< "", "torso" or "torso+arm" (body::corruptUpperArmWeights)
   double corruptFraction = 0.5;
   int threads = 0;                ///< worker threads; 0: one per core
   int maxAttempts = 50;           ///< draws per sample before giving up (InputError)
@@ -31,7 +31,7 @@ struct GenerateOptions {
 /// The pose drawn for sample `index` at its `attempt`-th try: a PoseSampler seeded from (seed, index, attempt), so a
 /// sample's pose does not depend on which shard or thread makes it. For the necktie only the centre line moves.
 /// Sets `pruned` to the number of draws the sampler discarded (arm inside the torso) before this one.
-core::Pose samplePose(const core::Body& body, const std::string& garment, std::uint64_t seed, int index, int attempt,
+body::Pose samplePose(const body::Body& body, const std::string& garment, std::uint64_t seed, int index, int attempt,
                       int* pruned = nullptr);
 
 /// What a generate run did.
@@ -51,8 +51,8 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
 /// Simulates `garment` (dressed by `dressing`) on `body` in every one of `poses` on `threads` threads (0: one per
 /// core), with progress on stderr unless `quiet`: each pose's statistics, rejection included, in the order given.
 /// No pose is redrawn: for rejection rates over a fixed set of poses.
-std::vector<SampleStats> simulatePoses(const core::Body& body, const core::Garment& garment,
-                                       const cage::Dressing& dressing, const std::vector<core::Pose>& poses,
+std::vector<data::SampleStats> simulatePoses(const body::Body& body, const garment::Garment& garment,
+                                       const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
                                        const SimulationOptions& options = {}, int threads = 0, bool quiet = false);
 
 }  // namespace pixelcloth::sim

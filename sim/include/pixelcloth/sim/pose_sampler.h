@@ -4,8 +4,8 @@
 #include <random>
 #include <vector>
 
-#include "pixelcloth/core/body.h"
-#include "pixelcloth/core/skeleton.h"
+#include "pixelcloth/body/body.h"
+#include "pixelcloth/body/skeleton.h"
 
 namespace pixelcloth::sim {
 
@@ -32,26 +32,26 @@ struct PoseSamplerStats {
 /// Draws poses as the paper's appendix does. Centre-line joints: half-normal mixtures (see options). Shoulders
 /// (clavicles), arms and forearms: azimuth (y) uniform, altitude (z) uniform in sine space (so the bone's direction
 /// is uniform on its patch of the sphere), twist (x) uniform, each within the joint's limits; composed in the order
-/// x, z, y (R = Ry Rz Rx, core::rotationFromEulerXZY). Pruning: sample points along each posed upper arm and forearm
+/// x, z, y (R = Ry Rz Rx, body::rotationFromEulerXZY). Pruning: sample points along each posed upper arm and forearm
 /// (beyond 15 cm from the shoulder joint) must not lie inside the posed torso part of the body (ray parity against
 /// the torso's faces along +z and -z). Seeded: the same seed gives the same poses.
 class PoseSampler {
  public:
-  PoseSampler(const core::Body& body, const PoseSamplerOptions& options = {});
+  PoseSampler(const body::Body& body, const PoseSamplerOptions& options = {});
 
   /// The next accepted pose.
-  core::Pose next();
+  body::Pose next();
   /// `count` accepted poses.
-  std::vector<core::Pose> sample(int count);
+  std::vector<body::Pose> sample(int count);
   /// A pose drawn without pruning (the raw distribution).
-  core::Pose draw();
+  body::Pose draw();
   /// True when a sample point of either arm lies inside the torso in this pose.
-  bool armInsideTorso(const core::Pose& pose) const;
+  bool armInsideTorso(const body::Pose& pose) const;
 
   const PoseSamplerStats& stats() const { return stats_; }
 
  private:
-  const core::Body& body_;
+  const body::Body& body_;
   PoseSamplerOptions options_;
   std::mt19937_64 rng_;
   PoseSamplerStats stats_;

@@ -1,0 +1,25 @@
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "pixelcloth/body/body.h"
+#include "pixelcloth/body/skeleton.h"
+
+namespace pixelcloth::body {
+
+/// Reads a pose from JSON, in either form:
+///   {"pose": [90 numbers]}  (10 row-major 3x3 local rotations, DESIGN.md order), or
+///   {"joints": {"l_arm": {"euler_deg": [x, y, z]}, "neck": {"rotation": [9 numbers]}, ...}}
+/// Joints left out stay at rest. Unknown joints, wrong counts, non-finite numbers and matrices that
+/// are not rotations are refused with the file and joint named.
+Pose readPose(const std::filesystem::path& path);
+
+/// Parses the same forms from an already-read JSON value; `context` names its origin in messages.
+Pose poseFromJson(const nlohmann::json& json, const std::string& context);
+
+/// {"pose": [90], "euler_deg": {"l_arm": [x, y, z], ...}}: readable by readPose and by people.
+nlohmann::json poseToJson(const Pose& pose);
+
+}  // namespace pixelcloth::body

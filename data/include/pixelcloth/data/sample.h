@@ -1,0 +1,35 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+namespace pixelcloth::data {
+
+/// Why a drawn sample was discarded: the pose sampler pruned it (an arm inside the torso), or the simulation failed
+/// the paper's test (a triangle shrank by more than 75% or grew by more than 100%), ended with cloth inside its body
+/// part deeper than allowed, or did not stay finite.
+enum class Rejection { None, TriangleShrank, TriangleGrew, NotFinite, ArmInsideTorso, Penetrated };
+
+/// "none", "triangle_shrank", "triangle_grew", "not_finite", "arm_inside_torso", "penetrated".
+const char* rejectionName(Rejection rejection);
+
+/// What the quasistatic solver reports for one pose.
+struct SampleStats {
+  int iterations = 0;         ///< solver iterations over all continuation steps
+  double residual = 0;        ///< largest vertex move in the last iteration (metres)
+  double maxPenetration = 0;  ///< deepest cloth vertex inside its collision part (metres, >= 0)
+  double minAreaRatio = 1;    ///< smallest triangle area over its pattern (rest) area
+  double maxAreaRatio = 1;    ///< largest such ratio
+  double seconds = 0;         ///< wall time of the solve
+  Rejection rejection = Rejection::None;
+};
+
+/// One simulated (or imported) sample: the pose and the garment's shape.
+struct Sample {
+  Eigen::VectorXf pose;        ///< 90 floats (T-shirt) or the first 36 (necktie), body::Pose::toVector order
+  Eigen::MatrixX3f positions;  ///< #V x 3 world positions (metres)
+  Eigen::MatrixX3f offsets;    ///< #V x 3 offsets (du, dv, dn) in the embedded frames of the posed body
+  SampleStats stats;
+};
+
+}  // namespace pixelcloth::data

@@ -1,0 +1,77 @@
+// Internals shared by the dataset sources: streamed .npy files (headers, rows, CRC-32 while writing) and file names.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace pixelcloth::data::detail {
+
+inline constexpr const char* kManifest = "manifest.json";
+inline constexpr const char* kPartial = "partial";
+inline constexpr const char* kPoses = "poses.npy";
+inline constexpr const char* kPositions = "positions.npy";
+inline constexpr const char* kOffsets = "offsets.npy";
+inline constexpr const char* kSplit = "split.npy";
+inline constexpr const char* kRestPositions = "rest_positions.npy";
+
+/// The files every finished dataset holds besides manifest.json, relative to its folder (body/ and garment/ files
+/// are listed from the folder itself).
+std::vector<std::string> sharedFiles(const std::filesystem::path& folder);
+
+/// False for shared files that legitimately differ between runs that made the same data (garment.json records the
+/// meshing time); the others must be byte-identical when a dataset is resumed or shards are merged.
+inline bool byteComparable(const std::string& sharedFile) { return sharedFile != "garment/garment.json"; }
+
+/// The header of a .npy file: dtype, shape and where the data starts; the data size is checked against the file.
+struct NpyHeader {
+  std::string dtype;
+  std::vector<std::int64_t> shape;
+  std::int64_t dataOffset = 0;
+  std::int64_t itemSize = 0;
+  std::int64_t elements() const;
+  std::string shapeString() const;
+};
+
+/// A shape as Python writes it: "(3, 4)", "(5,)".
+std::string shapeString(const std::vector<std::int64_t>& shape);
+
+/// Reads and checks the header of a .npy file (version 1.0-3.0, C order, little endian, data length exact).
+NpyHeader readNpyHeader(const std::filesystem::path& path);
+
+/// The preamble (magic, version, header dict padded to 64 bytes) that core::writeNpy writes for this array.
+std::string npyPreamble(const std::string& dtype, const std::vector<std::int64_t>& shape);
+
+/// Appends bytes to a file while computing their CRC-32.
+class CrcWriter {
+ public:
+  explicit CrcWriter(const std::filesystem::path& path);
+  void write(const void* data, std::size_t bytes);
+  /// Closes and checks the stream; returns the CRC-32 of everything written.
+  std::uint32_t close();
+  std::uint32_t crc() const { return crc_; }
+  std::uint64_t size() const { return size_; }
+
+ private:
+  std::filesystem::path path_;
+  std::ofstream out_;
+  std::uint32_t crc_ = 0;
+  std::uint64_t size_ = 0;
+};
+
+/// CRC-32 of a byte range, continuing from `crc` (zlib's crc32).
+std::uint32_t crc32Update(std::uint32_t crc, const void* data, std::size_t bytes);
+
+/// Reads `bytes` at `offset` of an open file; throws `InputError` naming `path` when it cannot.
+void readAt(std::ifstream& in, const std::filesystem::path& path, std::int64_t offset, void* data, std::size_t bytes);
+
+/// True when two files have the same bytes.
+bool sameBytes(const std::filesystem::path& a, const std::filesystem::path& b);
+
+/// Throws `InputError` naming `path` and the first non-finite value's position when a float32 block is not finite.
+void checkFinite(const float* values, std::int64_t count, const std::string& path, std::int64_t firstElement,
+                 std::int64_t rowLength);
+
+}  // namespace pixelcloth::data::detail

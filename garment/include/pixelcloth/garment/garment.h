@@ -1,0 +1,160 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "pixelcloth/core/image.h"
+#include "pixelcloth/core/mesh.h"
+
+namespace pixelcloth::garment {
+
+/// An ordered chain of garment vertices along mesh edges where pieces are sewn (a cage curve of the
+/// paper's section 3). Consecutive vertices share a mesh edge.
+struct Seam {
+  std::string name;  ///< "side_left", "underarm_left", "shoulder_left", "sleeve_top_left", "armhole_front_left", ...
+  std::vector<int> vertices;  ///< ordered chain of mesh vertex indices (rows of `Garment::mesh.V`)
+  /// true: the chain lies on the boundary of both the front and the back layout (stitched: one 3D vertex with two
+  /// UVs, one per layout); false: a sewn line inside one layout (the armholes).
+  bool joinsLayouts = false;
+};
+
+/// An unsewn boundary loop of the garment (hem, neckline, sleeve hem, the necktie's outline). The vertices are ordered
+/// along the boundary with the cloth on the left seen from outside; the loop closes from the last back to the first.
+struct Opening {
+  std::string name;
+  std::vector<int> vertices;
+};
+
+/// A cage line that is neither a seam nor an opening (DESIGN.md, "Cage"): a body loop around the torso or a sleeve,
+/// a centre line, or a line that only splits a region too large for one patch. The pattern mesher inserts it as a
+/// constraint, so it runs along mesh edges: consecutive vertices (and last-first when closed) share a mesh edge.
+/// T-shirt lines:
+///  - "chest", "waist" (kind "loop", closed): horizontal lines across the front and the back torso, joined through the
+///    side seams into one loop; "bicep_left", "bicep_right" (loop, closed): across both sleeve halves at mid-sleeve,
+///    joined through the sleeve-top and underarm seams. Each loop runs from the wearer's right (or the underarm) along
+///    the front, then back along the back layout.
+///  - "centre_front", "centre_back" (kind "centre_line", open): neckline to hem.
+///  - "side_panel_front_left", "side_panel_front_right", "side_panel_back_left", "side_panel_back_right" (kind
+///    "split", open): vertical lines from the chest line to the hem; left/right are the wearer's.
+/// Necktie lines: "tie_band_1" (lowest) ... (kind "split", open), across the blade from edge to edge.
+struct CageLine {
+  std::string name;
+  std::string kind;           ///< "loop" | "centre_line" | "split", as cage::curveKindName spells them
+  std::vector<int> vertices;  ///< ordered chain of mesh vertex indices
+  bool closed = false;        ///< continues from the last vertex back to the first
+};
+
+/// How the flat pattern was meshed: what the seam matching and the vertex-count search needed.
+struct PatternMeshingStats {
+  int stitchRounds = 0;        ///< mesh-and-compare rounds until the stitched seams agreed, for the kept mesh
+  int sizeTrials = 0;          ///< edge-length bounds tried to reach the target vertex count
+  double maxEdgeLength = 0;    ///< edge length bound handed to the mesher, metres of pattern space
+  double minAngleDegrees = 0;  ///< smallest triangle angle in pattern space
+  double seconds = 0;          ///< wall time of the whole construction
+  /// One line, e.g. "3012 vertices, min angle 20.8 deg, 3 stitch rounds, 2 size trials, 0.21 s".
+  std::string summary(int numVertices) const;
+};
+
+/// A garment template: one triangle mesh sewn from flat pattern pieces, each vertex a cloth pixel with fixed
+/// coordinates in pattern space (per layout). Pattern space: metres, u to the right and v up as the layout is drawn.
+struct Garment {
+  std::string name;  ///< "tshirt" | "necktie"
+  /// V: #V x 3 rest placement around the T-posed mannequin, metres (Y up, body faces +Z), faces oriented outwards;
+  /// F: #F x 3; UV / FUV: per-corner pattern coordinates in metres, each layout's triangles counter-clockwise.
+  core::Mesh mesh;
+  std::vector<std::string> layouts;  ///< {"front", "back"} for the T-shirt, {"tie"} for the necktie
+  Eigen::VectorXi faceLayout;        ///< #F, index into `layouts`
+  std::vector<std::string> panels;   ///< pattern pieces; T-shirt: front, back, left_sleeve_front, left_sleeve_back, ...
+  Eigen::VectorXi facePanel;         ///< #F, index into `panels`
+  /// #V x #layouts: row of `mesh.UV` that vertex v has in layout l, or -1 where v is not part of that layout.
+  /// Vertices on stitched seams have one UV in each layout.
+  Eigen::MatrixXi vertexUV;
+  std::vector<Seam> seams;
+  std::vector<Opening> openings;
+  std::vector<CageLine> lines;  ///< cage lines other than seams and openings (see CageLine)
+  PatternMeshingStats meshing;
+
+  int numLayouts() const { return static_cast<int>(layouts.size()); }
+  /// Index of a layout by name; throws `InputError` naming the known layouts if there is none.
+  int layoutIndex(const std::string& layoutName) const;
+  /// Bounding box of the UVs used by the faces of one layout, metres of pattern space.
+  Eigen::AlignedBox2d layoutBounds(int layout) const;
+  /// Vertical extent of the first layout, metres: for the T-shirt the front from the neck-side point to the hem, for
+  /// the necktie its length.
+  double length() const;
+  /// Seam by name, or nullptr.
+  const Seam* findSeam(const std::string& seamName) const;
+  /// Cage line by name, or nullptr.
+  const CageLine* findLine(const std::string& lineName) const;
+  /// One line: "tshirt: 3012 vertices, 5790 faces, layouts front+back, 6 panels, 12 seams, 4 openings, 10 cage lines".
+  std::string summary() const;
+};
+
+/// A plain short-sleeve T-shirt for the built-in 1.75 m mannequin (arms horizontal at shoulder height). Lengths in
+/// metres of pattern space, measured on the front layout with x to the wearer's left and y up from the hem.
+struct TShirtOptions {
+  int targetVertices = 3000;        ///< vertex count of the stitched mesh to aim for (reached within a few percent)
+  double length = 0.67;             ///< neck-side point to hem
+  double halfWidth = 0.27;          ///< body half-width (chest half-width ~0.165 plus ease)
+  double shoulderHalfWidth = 0.20;  ///< centre line to the shoulder point (top of the armhole)
+  double shoulderDrop = 0.01;       ///< how much lower the shoulder point is than the neck-side point
+  double armpitDepth = 0.19;        ///< armpit (bottom of the armhole) below the neck-side point
+  double sleeveLength = 0.21;       ///< shoulder point to sleeve hem along the sleeve's top line
+  double sleeveHemHeight = 0.17;    ///< flat height of the sleeve hem (half its circumference)
+  double neckHalfWidth = 0.08;      ///< centre line to the neck-side point
+  double frontNeckDepth = 0.09;     ///< front neckline depth below the neck-side point
+  double backNeckDepth = 0.02;      ///< back neckline depth below the neck-side point
+  double neckSideHeight = 1.48;     ///< height of the neck-side point in the rest placement
+  double torsoDepth = 0.12;         ///< distance of the front (back) torso from the side seams' plane z = 0
+  /// Height above the hem of the chest loop (below the armpit). With the waist height it sets the three bands of the
+  /// torso; 0.43 / 0.215 keep the two lower bands within 128 px of the 512 px cloth image (patches/frame.h).
+  double chestHeight = 0.43;
+  double waistHeight = 0.215;  ///< height above the hem of the waist loop
+  double sidePanelX = 0.15;    ///< distance of the side-panel split lines (chest line to hem) from the centre line
+  double bicepFraction =
+      0.5;                    ///< where the bicep loops cross the sleeve-top and underarm seams, fraction from the body
+  double sleeveDepth = 0.06;  ///< same for the sleeves
+  /// Spacing of the first samples along the pattern's outline and seams, relative to the mesher's edge-length bound.
+  /// About 0.7 matches the interior edge length; larger values let the mesher split boundary edges where it needs
+  /// to, and the seams are then matched across the layouts in more rounds. In [0.3, 3].
+  double boundarySpacing = 0.7;
+  /// Throws `InputError` naming the field when an option is out of range or the pattern pieces would not fit.
+  void validate() const;
+};
+
+/// Builds the T-shirt template: front and back layouts (each the body piece with the two sleeve halves, joined along
+/// the armholes), triangulated in pattern space by CGAL's constrained Delaunay mesher (min angle >= 20.7 degrees),
+/// stitched along the side, underarm, shoulder and sleeve-top seams. Openings: hem, neckline, sleeve_hem_left,
+/// sleeve_hem_right. Cage lines (see CageLine) inserted as mesher constraints split each layout into 14 patches.
+/// Deterministic.
+Garment makeTShirt(const TShirtOptions& options = {});
+
+/// A necktie blade: one narrow layout, pointed tip at the bottom, hanging flat in front of the chest.
+struct NecktieOptions {
+  int targetVertices = 500;      ///< vertex count to aim for
+  double length = 0.44;          ///< knot end to tip, metres
+  double knotWidth = 0.05;       ///< width at the knot end (top)
+  double bladeWidth = 0.10;      ///< widest point, just above the tip
+  double tipHeight = 0.06;       ///< height of the pointed tip below the widest point
+  double topHeight = 1.45;       ///< height of the knot end in the rest placement
+  double frontOffset = 0.13;     ///< z of the hanging tie in the rest placement
+  double boundarySpacing = 0.7;  ///< first sample spacing along the outline relative to the edge-length bound, [0.3, 3]
+  /// Number of patches along the blade, [1, 20]: bands - 1 evenly spaced cage lines "tie_band_1", ... across it (the
+  /// lowest must clear the tip: length / bands > tipHeight).
+  int bands = 5;
+  /// Throws `InputError` naming the field when an option is out of range.
+  void validate() const;
+};
+
+/// Builds the necktie template: one layout "tie", one panel, no seams, one opening "outline", bands - 1 cage lines.
+/// Deterministic.
+Garment makeNecktie(const NecktieOptions& options = {});
+
+/// Writes a garment folder: garment.obj (positions, per-corner UVs as `vt`) and garment.json (layouts,
+/// panels, per-face layout and panel, seams and openings as vertex chains). Each file atomically.
+void saveGarment(const std::filesystem::path& folder, const Garment& garment);
+
+}  // namespace pixelcloth::garment

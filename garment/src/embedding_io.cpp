@@ -1,0 +1,37 @@
+// Embedding arrays on disk: embedding_triangle.npy, embedding_barycentric.npy, embedding_tangent.npy.
+#include <limits>
+
+#include "pixelcloth/garment/embedding.h"
+#include "pixelcloth/core/error.h"
+#include "pixelcloth/core/npy.h"
+
+namespace pixelcloth::garment {
+
+using namespace core;
+
+namespace fs = std::filesystem;
+
+void saveEmbedding(const fs::path& folder, const Embedding& embedding) {
+  embedding.validate(std::numeric_limits<int>::max(), "saveEmbedding");
+  std::vector<std::int32_t> triangles(embedding.triangle.data(), embedding.triangle.data() + embedding.size());
+  writeNpy(folder / "embedding_triangle.npy", triangles, {embedding.size()});
+  writeNpy(folder / "embedding_barycentric.npy", Eigen::MatrixXd(embedding.barycentric));
+  writeNpy(folder / "embedding_tangent.npy", Eigen::MatrixXd(embedding.tangentCoords));
+}
+
+Embedding loadEmbedding(const fs::path& folder, int numBodyFaces) {
+  const fs::path trianglePath = folder / "embedding_triangle.npy";
+  const NpyArray triangles = readNpy(trianglePath);
+  PIXELCLOTH_CHECK(triangles.shape.size() == 1, trianglePath.string()
+                                                    << ": shape " << triangles.shapeString() << ", expected (#C,)");
+  const std::int32_t* values = triangles.data<std::int32_t>();
+  const std::int64_t n = triangles.shape[0];
+  Embedding embedding;
+  embedding.triangle = Eigen::Map<const Eigen::VectorXi>(values, n);
+  embedding.barycentric = readNpyMatrixD(folder / "embedding_barycentric.npy", n, 3);
+  embedding.tangentCoords = readNpyMatrixD(folder / "embedding_tangent.npy", n, 2);
+  embedding.validate(numBodyFaces < 0 ? std::numeric_limits<int>::max() : numBodyFaces, folder.string() + "/embedding");
+  return embedding;
+}
+
+}  // namespace pixelcloth::garment

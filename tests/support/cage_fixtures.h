@@ -1,0 +1,14 @@
+#pragma once
+
+#include "support/fixtures.h"
+#include "pixelcloth/cage/garment_cage.h"
+
+namespace pixelcloth::testing {
+
+/// The default T-shirt's cage, built once per test process.
+inline const cage::Cage& tshirtCage() {
+  static const cage::Cage cage = cage::garmentCage(tshirt());
+  return cage;
+}
+
+}  // namespace pixelcloth::testing

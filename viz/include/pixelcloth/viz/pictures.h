@@ -1,0 +1,63 @@
+#pragma once
+
+// The pictures of each stage, drawn from its plain results (a stage's library never draws).
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "pixelcloth/body/body.h"
+#include "pixelcloth/cage/cage.h"
+#include "pixelcloth/cage/dressing.h"
+#include "pixelcloth/core/image.h"
+#include "pixelcloth/garment/garment.h"
+#include "pixelcloth/patches/cloth_image.h"
+#include "pixelcloth/recon/reconstruct.h"
+
+namespace pixelcloth::viz {
+
+/// Picture of the flat pattern for people: the layouts side by side (in `layouts` order) with a gap, panels tinted by
+/// panel, triangle edges thin grey, seams thick, each seam in its own colour (the same on both layouts), openings
+/// dark, cage lines dark blue. `pixelsPerMetre` of pattern space (10 to 10000).
+core::RgbImage renderPattern(const garment::Garment& garment, int pixelsPerMetre = 1000);
+
+/// Picture of a cage on its mesh: front, back and three-quarter views, curves coloured by kind (loops red,
+/// centre lines blue, seams green, openings black, splits orange), nodes as dots; only parts facing the camera drawn.
+core::RgbImage renderCageOnMesh(const core::Mesh& mesh, const cage::Cage& cage, int panelSize = 420);
+
+/// Area distortion in pattern space, before and after relaxation side by side: faces coloured by
+/// log2(3D area / pattern area), red for stretch, blue for compression, white for none; with a colour bar.
+core::RgbImage renderAreaDistortion(const garment::Garment& garment, const cage::Dressing& dressing, int pixelsPerMetre = 800);
+
+/// How PNG previews show a cloth image.
+struct PreviewOptions {
+  /// Offsets in [-range, range] (metres) map to [0, 255] per channel (0 -> 128); 0: per channel, the largest |value|
+  /// over the non-empty pixels of every layer (at least 1e-6).
+  float range = 0;
+  float paddingBrightness = 0.55f;  ///< padding pixels are this fraction of their colour (dimmer), in [0, 1]
+};
+
+/// PNG preview in the paper's style: RGB = (du, dv, dn) mapped symmetrically around 0 to [0, 255], padding dimmer,
+/// empty pixels white; layers side by side left to right in `layers` order, no gap (so pixel (x, y) of layer l is
+/// preview pixel (l * width + x, y)).
+core::RgbImage renderClothImage(const patches::ClothImage& image, const PreviewOptions& options = {});
+
+/// Writes a folder of posed bodies: posed_NNN.obj per pose, poses.npy (N x 90 float32), poses.json (each pose
+/// as poseToJson plus its mesh name, and `info` at the top level) and posed.png (up to 24 poses at one scale,
+/// skeletons drawn). Shows progress on stderr.
+void writePosedBodies(const std::filesystem::path& folder, const body::Body& body, const std::vector<body::Pose>& poses,
+                      const nlohmann::json& info = nlohmann::json::object());
+
+/// Per-vertex values (#V, e.g. errors in metres) drawn in pattern space: each layout in its own `size` x `size`
+/// cloth-image frame, faces coloured by the mean of their vertices on a dark-blue-to-yellow ramp from 0 to `maxValue`,
+/// under a title row. Layouts side by side.
+core::RgbImage renderPatternValues(const garment::Garment& garment, const Eigen::VectorXd& values, double maxValue,
+                                   const std::string& title, int size = 256);
+
+/// The error maps of reconstructDataset's methods, one row each on one colour scale (the largest mean vertex error of
+/// any method, at least 1 cm), titled with the method and its mean error.
+core::RgbImage renderReconstructionErrors(const garment::Garment& garment, const recon::DatasetReconstructionReport& report);
+
+}  // namespace pixelcloth::viz

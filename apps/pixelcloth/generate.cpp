@@ -15,7 +15,7 @@ struct GenerateArgs {
 };
 
 void runGenerate(GenerateArgs args) {
-  if (args.options.quiet) core::setLogLevel(core::LogLevel::Quiet);
+  if (args.options.quiet) core::setLogLevel(core::LogLevel::Warning);
   const sim::GenerateReport report = sim::generateDataset(args.out, args.options);
   PIXELCLOTH_INFO("generate: " << report.added << " samples simulated (" << report.resumed << " already done, "
                                << report.rejected << " simulations rejected) in " << report.seconds << " s -> "

@@ -10,9 +10,9 @@ int main(int argc, char** argv) {
   CLI::App app{"pixelcloth: data-driven garments in pattern space (pixel-based cloth)", "pixelcloth"};
   app.require_subcommand(1);
   bool quiet = false;
-  app.add_flag("-q,--quiet", quiet, "Silence progress and information on stderr");
+  app.add_flag("-q,--quiet", quiet, "Silence progress and information on stderr (warnings that data was lost still show)");
   app.parse_complete_callback([&] {
-    pixelcloth::core::setLogLevel(quiet ? pixelcloth::core::LogLevel::Quiet : pixelcloth::core::LogLevel::Info);
+    pixelcloth::core::setLogLevel(quiet ? pixelcloth::core::LogLevel::Warning : pixelcloth::core::LogLevel::Info);
   });
 
   pixelcloth::apps::registerBody(app);
@@ -42,8 +42,11 @@ int main(int argc, char** argv) {
   } catch (const pixelcloth::core::InputError& e) {
     std::cerr << "pixelcloth: error: " << e.what() << '\n';
     return 2;
+  } catch (const pixelcloth::core::InternalError& e) {
+    std::cerr << "pixelcloth: " << e.what() << '\n';
+    return 1;
   } catch (const std::exception& e) {
-    std::cerr << "pixelcloth: internal error: " << e.what() << '\n';
+    std::cerr << "pixelcloth: internal error (a bug in pixelcloth, please report it): " << e.what() << '\n';
     return 1;
   }
   return 0;

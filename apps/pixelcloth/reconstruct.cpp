@@ -155,7 +155,7 @@ void runFromDataset(const ReconstructArgs& args) {
 }
 
 void runReconstruct(const ReconstructArgs& args) {
-  if (args.quiet) core::setLogLevel(core::LogLevel::Quiet);
+  if (args.quiet) core::setLogLevel(core::LogLevel::Warning);
   PIXELCLOTH_CHECK(args.markers.empty() != args.dataset.empty(),
                    "reconstruct: give either --markers (with --pose) or --dataset, not both or neither");
   if (!args.markers.empty())

@@ -4,30 +4,25 @@
 #include <map>
 #include <set>
 
+#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 
 namespace pixelcloth::cage {
 
 namespace {
-const std::pair<CurveKind, const char*> kKindNames[] = {{CurveKind::Seam, "seam"},
-                                                        {CurveKind::Loop, "loop"},
-                                                        {CurveKind::CentreLine, "centre_line"},
-                                                        {CurveKind::Opening, "opening"},
-                                                        {CurveKind::Split, "split"}};
+const core::EnumNames<CurveKind, 5> kCurveKinds{"curve kind",
+                                                {{{CurveKind::Seam, "seam"},
+                                                  {CurveKind::Loop, "loop"},
+                                                  {CurveKind::CentreLine, "centre_line"},
+                                                  {CurveKind::Opening, "opening"},
+                                                  {CurveKind::Split, "split"}}}};
 }  // namespace
 
-const char* curveKindName(CurveKind kind) {
-  for (const auto& [k, name] : kKindNames)
-    if (k == kind) return name;
-  return "seam";
-}
+const char* curveKindName(CurveKind kind) { return kCurveKinds.name(kind); }
 
 CurveKind curveKindFromName(const std::string& name, const std::string& context) {
-  for (const auto& [k, n] : kKindNames)
-    if (name == n) return k;
-  PIXELCLOTH_FAIL(context << ": unknown curve kind '" << name
-                          << "'; expected seam, loop, centre_line, opening or split");
+  return kCurveKinds.fromName(name, context);
 }
 
 const CageCurve* Cage::findCurve(const std::string& name) const {

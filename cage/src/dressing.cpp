@@ -297,7 +297,7 @@ Eigen::MatrixX3d harmonicDisplacement(const Eigen::MatrixX3d& V, const Eigen::Ma
   Eigen::SparseMatrix<double> L(numFree, numFree);
   L.setFromTriplets(triplets.begin(), triplets.end());
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
-  PIXELCLOTH_CHECK(solver.info() == Eigen::Success, "dressing: the Poisson system could not be factorised");
+  PIXELCLOTH_ASSERT(solver.info() == Eigen::Success, "dressing: the Poisson system could not be factorised");
   const Eigen::MatrixX3d solved = solver.solve(rhs);
   for (int v = 0; v < n; ++v) {
     if (freeIndex[v] >= 0) displacement.row(v) = solved.row(freeIndex[v]);

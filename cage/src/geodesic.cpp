@@ -7,6 +7,7 @@
 
 #include <limits>
 
+#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
 
 namespace pixelcloth::cage {
@@ -19,22 +20,15 @@ using Traits = CGAL::Surface_mesh_shortest_path_traits<Kernel, SurfaceMesh>;
 using ShortestPath = CGAL::Surface_mesh_shortest_path<Traits>;
 }  // namespace
 
-const char* restLengthsName(RestLengths lengths) {
-  switch (lengths) {
-    case RestLengths::Pattern:
-      return "pattern";
-    case RestLengths::Polyline:
-      return "polyline";
-    case RestLengths::Geodesic:
-      return "geodesic";
-  }
-  return "pattern";
-}
+namespace {
+const core::EnumNames<RestLengths, 3> kRestLengths{
+    "rest lengths", {{{RestLengths::Pattern, "pattern"}, {RestLengths::Polyline, "polyline"}, {RestLengths::Geodesic, "geodesic"}}}};
+}  // namespace
+
+const char* restLengthsName(RestLengths lengths) { return kRestLengths.name(lengths); }
 
 RestLengths restLengthsFromName(const std::string& name, const std::string& context) {
-  for (RestLengths r : {RestLengths::Pattern, RestLengths::Polyline, RestLengths::Geodesic})
-    if (name == restLengthsName(r)) return r;
-  PIXELCLOTH_FAIL(context << ": unknown rest lengths '" << name << "'; expected pattern, polyline or geodesic");
+  return kRestLengths.fromName(name, context);
 }
 
 double patternEdgeLength(const garment::Garment& garment, int a, int b) {

@@ -15,26 +15,20 @@
 #include <unordered_map>
 
 #include "pixelcloth/cage/spline_residuals.h"
+#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
 
 namespace pixelcloth::cage {
 
-const char* curveMethodName(CurveMethod method) {
-  switch (method) {
-    case CurveMethod::Linear:
-      return "linear";
-    case CurveMethod::CatmullRom:
-      return "catmull_rom";
-    case CurveMethod::Spline:
-      return "spline";
-  }
-  return "spline";
-}
+namespace {
+const core::EnumNames<CurveMethod, 3> kCurveMethods{
+    "curve method", {{{CurveMethod::Linear, "linear"}, {CurveMethod::CatmullRom, "catmull_rom"}, {CurveMethod::Spline, "spline"}}}};
+}  // namespace
+
+const char* curveMethodName(CurveMethod method) { return kCurveMethods.name(method); }
 
 CurveMethod curveMethodFromName(const std::string& name, const std::string& context) {
-  for (CurveMethod m : {CurveMethod::Linear, CurveMethod::CatmullRom, CurveMethod::Spline})
-    if (name == curveMethodName(m)) return m;
-  PIXELCLOTH_FAIL(context << ": unknown curve method '" << name << "'; expected linear, catmull_rom or spline");
+  return kCurveMethods.fromName(name, context);
 }
 
 void SplineOptions::validate() const {

@@ -441,7 +441,7 @@ void writeMesh(const fs::path& path, const Mesh& mesh) {
   const bool withTexcoords = format == Format::Obj && mesh.hasUV();
   if (withTexcoords) om.request_halfedge_texcoords2D();
   if (!withTexcoords && mesh.hasUV()) {
-    PIXELCLOTH_INFO(path.string() << ": " << (format == Format::Ply ? "PLY" : "OFF")
+    PIXELCLOTH_WARN(path.string() << ": " << (format == Format::Ply ? "PLY" : "OFF")
                                   << " files do not hold per-corner texture coordinates; they were not written (use "
                                      ".obj to keep them)");
   }

@@ -13,6 +13,7 @@
 #include <set>
 
 #include "dataset_internal.h"
+#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
@@ -121,17 +122,12 @@ std::string DatasetSettings::firstDifference(const DatasetSettings& other, bool 
   return "";
 }
 
-const char* splitName(Split split) {
-  switch (split) {
-    case Split::Train:
-      return "train";
-    case Split::Regularisation:
-      return "regularisation";
-    case Split::Test:
-      return "test";
-  }
-  return "unknown";
-}
+namespace {
+const core::EnumNames<Split, 3> kSplits{
+    "split", {{{Split::Train, "train"}, {Split::Regularisation, "regularisation"}, {Split::Test, "test"}}}};
+}  // namespace
+
+const char* splitName(Split split) { return kSplits.name(split); }
 
 std::vector<std::uint8_t> datasetSplit(std::uint64_t seed, int count) {
   PIXELCLOTH_CHECK(count >= 0, "split: negative sample count " << count);
@@ -511,7 +507,7 @@ DatasetWriter::~DatasetWriter() {
     std::lock_guard<std::mutex> lock(impl_->mutex);
     if (!impl_->finished) impl_->flushLocked();
   } catch (const std::exception& e) {
-    core::logLine(core::LogLevel::Info, std::string("dataset: could not save the last samples: ") + e.what());
+    PIXELCLOTH_WARN("dataset: could not save the last samples: " << e.what());
   }
 }
 

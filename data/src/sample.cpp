@@ -1,23 +1,19 @@
 #include "pixelcloth/data/sample.h"
 
+#include "pixelcloth/core/enum_names.h"
+
 namespace pixelcloth::data {
 
-const char* rejectionName(Rejection rejection) {
-  switch (rejection) {
-    case Rejection::None:
-      return "none";
-    case Rejection::TriangleShrank:
-      return "triangle_shrank";
-    case Rejection::TriangleGrew:
-      return "triangle_grew";
-    case Rejection::NotFinite:
-      return "not_finite";
-    case Rejection::ArmInsideTorso:
-      return "arm_inside_torso";
-    case Rejection::Penetrated:
-      return "penetrated";
-  }
-  return "unknown";
-}
+namespace {
+const core::EnumNames<Rejection, 6> kRejections{"rejection",
+                                                {{{Rejection::None, "none"},
+                                                  {Rejection::TriangleShrank, "triangle_shrank"},
+                                                  {Rejection::TriangleGrew, "triangle_grew"},
+                                                  {Rejection::NotFinite, "not_finite"},
+                                                  {Rejection::ArmInsideTorso, "arm_inside_torso"},
+                                                  {Rejection::Penetrated, "penetrated"}}}};
+}  // namespace
+
+const char* rejectionName(Rejection rejection) { return kRejections.name(rejection); }
 
 }  // namespace pixelcloth::data

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "pixelcloth/cage/garment_cage.h"
+#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
@@ -28,30 +29,20 @@ namespace pixelcloth::recon {
 
 namespace fs = std::filesystem;
 
-const char* reconstructionMethodName(ReconstructionMethod method) {
-  switch (method) {
-    case ReconstructionMethod::Linear:
-      return "linear";
-    case ReconstructionMethod::CatmullRom:
-      return "catmull_rom";
-    case ReconstructionMethod::Spline:
-      return "spline";
-    case ReconstructionMethod::SplineAnisotropic:
-      return "spline_anisotropic";
-  }
-  return "spline";
-}
+namespace {
+const core::EnumNames<ReconstructionMethod, 4> kMethods{"reconstruction method",
+                                                        {{{ReconstructionMethod::Linear, "linear"},
+                                                          {ReconstructionMethod::CatmullRom, "catmull_rom"},
+                                                          {ReconstructionMethod::Spline, "spline"},
+                                                          {ReconstructionMethod::SplineAnisotropic, "spline_anisotropic"}}}};
+}  // namespace
 
-std::vector<ReconstructionMethod> allReconstructionMethods() {
-  return {ReconstructionMethod::Linear, ReconstructionMethod::CatmullRom, ReconstructionMethod::Spline,
-          ReconstructionMethod::SplineAnisotropic};
-}
+const char* reconstructionMethodName(ReconstructionMethod method) { return kMethods.name(method); }
+
+std::vector<ReconstructionMethod> allReconstructionMethods() { return kMethods.values(); }
 
 ReconstructionMethod reconstructionMethodFromName(const std::string& name, const std::string& context) {
-  for (ReconstructionMethod m : allReconstructionMethods())
-    if (name == reconstructionMethodName(m)) return m;
-  PIXELCLOTH_FAIL(context << ": unknown method '" << name
-                          << "'; expected linear, catmull_rom, spline or spline_anisotropic");
+  return kMethods.fromName(name, context);
 }
 
 void ReconstructionOptions::validate() const {

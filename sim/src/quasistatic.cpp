@@ -319,7 +319,7 @@ struct QuasistaticSolver::Impl {
     Eigen::SparseMatrix<double> A = system;
     for (int v = 0; v < weight.size(); ++v)
       if (weight(v) > 0) A.coeffRef(v, v) += weight(v);
-    PIXELCLOTH_CHECK(solver.compute(A), "solver: the cloth system with contact springs could not be factored");
+    PIXELCLOTH_ASSERT(solver.compute(A), "solver: the cloth system with contact springs could not be factored");
   }
 
   /// Coulomb friction on the contact springs, after a global step moved the cloth to `x` (before projection): the
@@ -417,7 +417,7 @@ QuasistaticSolver::QuasistaticSolver(const core::Mesh& cloth, const std::vector<
   s.system = K + s.bending + diagonal;
   s.system.makeCompressed();
   s.contactWeight = Eigen::VectorXd::Zero(n);
-  PIXELCLOTH_CHECK(s.solver.compute(s.system), "solver: the cloth system could not be factored");
+  PIXELCLOTH_ASSERT(s.solver.compute(s.system), "solver: the cloth system could not be factored");
   s.contacts.assign(n, Contact{});
 }
 
@@ -439,7 +439,7 @@ void QuasistaticSolver::setColliders(std::vector<Collider> colliders, std::vecto
   // New colliders, new contacts: springs frozen for the old ones no longer apply.
   impl_->springsFrozen = false;
   impl_->contactWeight.setZero();
-  PIXELCLOTH_CHECK(impl_->solver.compute(impl_->system), "solver: the cloth system could not be factored");
+  PIXELCLOTH_ASSERT(impl_->solver.compute(impl_->system), "solver: the cloth system could not be factored");
 }
 
 void QuasistaticSolver::moveColliders(const std::vector<Eigen::MatrixX3d>& vertices) {

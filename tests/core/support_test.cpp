@@ -9,6 +9,7 @@
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/image.h"
+#include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/progress.h"
 #include "support/test_util.h"
@@ -25,6 +26,34 @@ TEST(Error, CheckThrowsInputErrorWithMessageAndLocation) {
     EXPECT_STREQ(e.what(), "thing.obj: expected 3, found 7");
     EXPECT_NE(e.where().find("support_test.cpp:"), std::string::npos);
   }
+}
+
+TEST(Error, AssertThrowsInternalErrorThatSaysItIsABug) {
+  try {
+    const int rows = 4;
+    PIXELCLOTH_ASSERT(rows == 3, "solver: " << rows << " rows");
+    FAIL() << "no exception";
+  } catch (const pc::InputError&) {
+    FAIL() << "an internal failure must not look like bad input (exit 2)";
+  } catch (const pc::InternalError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("bug"), std::string::npos) << message;
+    EXPECT_NE(message.find("support_test.cpp:"), std::string::npos) << message;
+    EXPECT_NE(message.find("'rows == 3' failed: solver: 4 rows"), std::string::npos) << message;
+  }
+}
+
+TEST(Log, WarningsShowUnderQuietButNotUnderSilent) {
+  const pc::LogLevel before = pc::logLevel();
+  for (const auto& [level, shown] : {std::pair{pc::LogLevel::Warning, true}, std::pair{pc::LogLevel::Quiet, false}}) {
+    pc::setLogLevel(level);
+    ::testing::internal::CaptureStderr();
+    PIXELCLOTH_WARN("writer: 3 samples dropped");
+    PIXELCLOTH_INFO("progress that quiet hides");
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(err, shown ? "warning: writer: 3 samples dropped\n" : "");
+  }
+  pc::setLogLevel(before);
 }
 
 TEST(AtomicFile, FailedWriterLeavesNothingBehind) {

@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -222,19 +221,6 @@ TEST(Raster, SampleRowsArePartitionsOfUnity) {
   std::vector<bool> inLayout(shirt().mesh.numVertices(), false);
   for (int v : sample.vertices) inLayout[v] = true;
   for (int v = 0; v < shirt().mesh.numVertices(); ++v) ASSERT_NEAR(sums[v], inLayout[v] ? 1.0f : 0.0f, 1e-5) << v;
-}
-
-TEST(Raster, Rasterising512TakesUnderAMillisecond) {
-  pp::RasterOperator raster = pp::buildRaster(shirt(), 0, pp::layoutFrame(shirt(), 0, 512));
-  Eigen::MatrixXf x = Eigen::MatrixXf::Random(shirt().mesh.numVertices(), 3), image;
-  raster.applyTo(x, image);
-  const int repeats = 50;
-  auto start = std::chrono::steady_clock::now();
-  for (int i = 0; i < repeats; ++i) raster.applyTo(x, image);
-  double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / repeats;
-  std::cout << "[raster 512x512, " << shirt().mesh.numVertices() << " vertices, nnz " << raster.matrix.nonZeros()
-            << "] " << ms << " ms per R * X\n";
-  EXPECT_LT(ms, 5.0);  // the 0.5 ms goal is for `pixelcloth bench`; shared CI machines are noisier
 }
 
 TEST(Raster, OperatorsSurviveSaveAndLoad) {

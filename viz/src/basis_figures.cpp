@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/mesh_io.h"
@@ -99,23 +100,17 @@ core::RgbImage shadedImage(const PatchMesh& patch, const Eigen::VectorXd& height
 
 }  // namespace
 
-std::vector<BoundaryShape> allBoundaryShapes() {
-  return {BoundaryShape::OneBump, BoundaryShape::TwoBumps, BoundaryShape::SineWave, BoundaryShape::SCurve};
-}
+namespace {
+const core::EnumNames<BoundaryShape, 4> kShapes{"boundary shape",
+                                                {{{BoundaryShape::OneBump, "one_bump"},
+                                                  {BoundaryShape::TwoBumps, "two_bumps"},
+                                                  {BoundaryShape::SineWave, "sine"},
+                                                  {BoundaryShape::SCurve, "s_curve"}}}};
+}  // namespace
 
-std::string boundaryShapeName(BoundaryShape shape) {
-  switch (shape) {
-    case BoundaryShape::OneBump:
-      return "one_bump";
-    case BoundaryShape::TwoBumps:
-      return "two_bumps";
-    case BoundaryShape::SineWave:
-      return "sine";
-    case BoundaryShape::SCurve:
-      return "s_curve";
-  }
-  return "unknown";
-}
+std::vector<BoundaryShape> allBoundaryShapes() { return kShapes.values(); }
+
+std::string boundaryShapeName(BoundaryShape shape) { return kShapes.name(shape); }
 
 Eigen::VectorXd boundaryHeights(const PatchMesh& patch, BoundaryShape shape, double side, double amplitude) {
   PIXELCLOTH_CHECK(side > 0 && std::isfinite(amplitude),

@@ -5,7 +5,8 @@
 
 namespace pixelcloth::core {
 
-enum class LogLevel { Quiet = 0, Info = 1, Debug = 2 };
+/// Quiet: nothing; Warning: only what loses or drops data; Info: also progress and information (the default).
+enum class LogLevel { Quiet = 0, Warning = 1, Info = 2, Debug = 3 };
 
 /// Process-wide verbosity for messages on stderr (progress bars included). Default: Info.
 void setLogLevel(LogLevel level);
@@ -24,4 +25,15 @@ void logLine(LogLevel level, const std::string& line);
       pixelcloth_log_stream_ << message;                                                             \
       ::pixelcloth::core::logLine(::pixelcloth::core::LogLevel::Info, pixelcloth_log_stream_.str()); \
     }                                                                                                \
+  } while (false)
+
+/// Streams a warning to stderr, prefixed "warning: ": for what loses or drops data (samples not saved, attributes a
+/// format cannot hold). Shown unless the level is Quiet, so `--quiet` keeps it.
+#define PIXELCLOTH_WARN(message)                                                                           \
+  do {                                                                                                     \
+    if (::pixelcloth::core::logLevel() >= ::pixelcloth::core::LogLevel::Warning) {                         \
+      std::ostringstream pixelcloth_log_stream_;                                                           \
+      pixelcloth_log_stream_ << "warning: " << message;                                                    \
+      ::pixelcloth::core::logLine(::pixelcloth::core::LogLevel::Warning, pixelcloth_log_stream_.str());    \
+    }                                                                                                      \
   } while (false)

@@ -157,4 +157,54 @@ Garment makeNecktie(const NecktieOptions& options = {});
 /// panels, per-face layout and panel, seams and openings as vertex chains). Each file atomically.
 void saveGarment(const std::filesystem::path& folder, const Garment& garment);
 
+// ---------------------------------------------------------------------------------------------------------------------
+// Garment import: a garment folder read back, or a user's own garment brought in.
+
+/// Reads a garment from an OBJ with per-corner texture coordinates (`vt`, pattern-space metres) and a JSON file with
+/// its layouts and cage, in the schema saveGarment writes to garment.json:
+///  - "name": string, required.
+///  - "layouts": non-empty array of {"name": ...} objects (other fields, such as "bounds_m", are ignored) or of plain
+///    strings. Each face's UVs are coordinates in its layout.
+///  - "face_layout": #F layout indices (0-based, one per triangle of the mesh as core::readMesh builds it, i.e. per
+///    OBJ face when the OBJ holds triangles only); optional when there is one layout, required otherwise.
+///  - "panels" (array of strings) and "face_panel" (#F panel indices), optional: by default one panel named after the
+///    garment; "face_panel" is required when there are two or more panels and needs "panels".
+///  - "seams": [{"name", "vertices", "joins_layouts"?}], "openings": [{"name", "vertices"}], "cage_lines": [{"name",
+///    "kind", "closed"?, "vertices"}]; each list optional (absent: none). "joins_layouts" is computed when absent:
+///    true when the seam's edges have faces of two different layouts; "closed" defaults to false.
+///  - "format", "version" and "mesh" {"vertices", "faces"} are checked against the OBJ when present; other fields
+///    ("units", "meshing", ...) are ignored.
+/// Vertex indices in the JSON are 0-based rows of the OBJ's vertex list, as saveGarment writes them: JSON vertex i is
+/// the OBJ's `v` line number i + 1. Messages say "vertex i (OBJ vertex i + 1)" so that both can be found; faces are
+/// counted from 1 in messages, as the OBJ counts them.
+///
+/// Builds `Garment::vertexUV` from FUV and the face layouts, `faceLayout`, `facePanel`, `seams`, `openings` and
+/// `lines`; `meshing` stays default. Throws `InputError` naming the file and the field for any of:
+///  - a missing or unreadable OBJ, one without texture coordinates on every face, an invalid JSON;
+///  - a vertex used by no face; a vertex with two different UVs (more than 1 nm apart) in the same layout; a
+///    degenerate UV triangle (height below 1e-6 of its longest edge or below 0.1 micrometre);
+///  - a missing or ill-typed field, a face_layout / face_panel of the wrong length or with an index out of range, a
+///    layout no face uses, names repeated within layouts, panels, seams, openings or cage lines;
+///  - a polyline (seam, opening, cage line) with a vertex index out of range, a vertex visited twice, too few
+///    vertices (2 when open, 3 when closed), or consecutive vertices (last-first for closed lines and openings) that
+///    share no mesh edge; a cage line kind other than "loop", "centre_line", "split";
+///  - an opening edge that is not a mesh boundary edge or runs against the boundary (the cloth must be on the left:
+///    the opening follows the orientation of its faces); a boundary edge in no opening or in two;
+///  - an edge between faces of two layouts on no seam; a "joins_layouts" contradicting the faces around the seam;
+///  - a patch not closed: the faces are flood-filled across the edges on no seam, opening or cage line into patches;
+///    each end of an open seam or cage line must lie on another seam, opening or cage line or on the mesh boundary
+///    (a curve that stops inside a patch is refused, naming the curve and its end vertex), and every interior curve
+///    edge must have different patches on its two sides.
+Garment importGarment(const std::filesystem::path& obj, const std::filesystem::path& cageJson);
+
+/// Reads a garment folder that saveGarment wrote: importGarment(folder / "garment.obj", folder / "garment.json").
+Garment loadGarment(const std::filesystem::path& folder);
+
+/// Names of the built-in garment templates, in the order the CLI lists them: {"tshirt", "necktie"}.
+const std::vector<std::string>& templateNames();
+
+/// The built-in template called `name` with default options (makeTShirt() or makeNecktie()). Throws `InputError`
+/// "<context>: unknown garment template 'skirt'; expected one of: tshirt, necktie" for any other name.
+Garment makeGarment(const std::string& name, const std::string& context = "garment");
+
 }  // namespace pixelcloth::garment

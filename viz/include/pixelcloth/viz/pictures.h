@@ -60,4 +60,14 @@ core::RgbImage renderPatternValues(const garment::Garment& garment, const Eigen:
 /// any method, at least 1 cm), titled with the method and its mean error.
 core::RgbImage renderReconstructionErrors(const garment::Garment& garment, const recon::DatasetReconstructionReport& report);
 
+/// Writes cage.json, patches.json and cage.png of a garment into `out` (the `cage` verb's outputs; the demo's too).
+void writeCageFolder(const garment::Garment& garment, const std::filesystem::path& out, int size = 512);
+
+/// Writes the `dress` verb's outputs for a garment dressed on `body` into `out`, each file atomically: dressed.obj
+/// (the relaxed positions with the garment's UVs), area_distortion.png (viz::renderAreaDistortion), dressed.png (the
+/// dressed garment on the body, three views) and dressing.json (iterations, residual, area-ratio statistics before and
+/// after relaxation, vertices pushed out and their deepest penetration, vertices still inside, vertices per part).
+void writeDressingFolder(const body::Body& body, const garment::Garment& garment, const cage::Dressing& dressing,
+                         const std::filesystem::path& out);
+
 }  // namespace pixelcloth::viz

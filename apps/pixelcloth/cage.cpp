@@ -17,7 +17,7 @@ struct CageArgs {
 
 void runCage(const CageArgs& args) {
   core::checkOutputFolder(args.out);
-  viz::writeCageFolder(args.garment == "tshirt" ? garment::makeTShirt() : garment::makeNecktie(), args.out, args.size);
+  viz::writeCageFolder(garment::makeGarment(args.garment, "--garment"), args.out, args.size);
 }
 }  // namespace
 

@@ -68,11 +68,11 @@ void runImport(const DatasetArgs& args) {
                                                       : std::vector<std::filesystem::path>{objsPath};
   checkOutputFolder(args.out);
   // Fail on a bad pose file before the body and the dressing are built.
-  data::readPoseSequence(args.poses, args.garment == "necktie" ? 36 : 90);
+  data::readPoseSequence(args.poses, garment::poseSizeOf(args.garment));
   PIXELCLOTH_CHECK(args.body.empty() || args.dressing.empty(),
                    "dataset import: --body and --dressing exclude each other: the dressing "
                    "folder holds the body its embedding was made on");
-  const Garment garment = args.garment == "tshirt" ? makeTShirt() : makeNecktie();
+  const Garment garment = makeGarment(args.garment, "--garment");
   Body body;
   Eigen::MatrixX3d rest;
   Embedding embedding;

@@ -40,7 +40,7 @@ void runDress(const DressArgs& args) {
   } else {
     body = loadBody(args.body);
   }
-  const Garment garment = args.garment == "tshirt" ? makeTShirt() : makeNecktie();
+  const Garment garment = makeGarment(args.garment, "--garment");
   const cage::Cage bodyCage = cage::bodyCage(body);
   const cage::Cage garmentCage = cage::garmentCage(garment);
   const auto start = std::chrono::steady_clock::now();

@@ -82,7 +82,7 @@ void runImages(const ImagesArgs& args) {
   PIXELCLOTH_CHECK(args.values.empty() != args.image.empty(),
                    "images: give exactly one of --values, --image and --dataset");
   if (!args.values.empty()) checkOutputFolder(args.out);
-  Garment garment = args.garment == "tshirt" ? makeTShirt() : makeNecktie();
+  Garment garment = makeGarment(args.garment, "--garment");
   ClothImager imager(garment, options);
   if (!args.values.empty()) {
     Eigen::MatrixXf offsets = readNpyMatrixF(args.values, garment.mesh.numVertices(), 3);

@@ -39,7 +39,7 @@ struct MarkersArgs {
 garment::Garment garmentByName(const std::string& name, const std::string& context) {
   PIXELCLOTH_CHECK(name == "tshirt" || name == "necktie",
                    context << ": unknown garment '" << name << "', expected tshirt or necktie");
-  return name == "tshirt" ? garment::makeTShirt() : garment::makeNecktie();
+  return garment::makeGarment(name, "--garment");
 }
 
 void runMarkers(const MarkersArgs& args) {

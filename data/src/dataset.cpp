@@ -54,7 +54,7 @@ DatasetShard parseShard(const std::string& text) {
 void DatasetSettings::validate() const {
   PIXELCLOTH_CHECK(garment == "tshirt" || garment == "necktie",
                    "dataset settings: garment '" << garment << "', expected tshirt or necktie");
-  const int expectedPose = garment == "tshirt" ? 90 : 36;
+  const int expectedPose = garment::poseSizeOf(garment);
   PIXELCLOTH_CHECK(poseSize == expectedPose, "dataset settings: pose_size " << poseSize << " for the " << garment
                                                                             << ", expected " << expectedPose);
   PIXELCLOTH_CHECK(vertexCount > 0, "dataset settings: vertex_count " << vertexCount << ", expected > 0");

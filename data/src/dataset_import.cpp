@@ -79,12 +79,16 @@ std::vector<fs::path> objSequence(const fs::path& folder) {
 }
 
 std::vector<Eigen::VectorXf> readPoseSequence(const fs::path& path, int poseSize) {
-  PIXELCLOTH_CHECK(poseSize == 90 || poseSize == 36, "poses: pose size " << poseSize << ", expected 90 or 36");
+  PIXELCLOTH_CHECK(poseSize == body::kPoseSize || poseSize == body::kNecktiePoseSize,
+                   "poses: pose size " << poseSize << ", expected " << body::kPoseSize << " or " << body::kNecktiePoseSize);
   const std::string file = path.string();
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   // The necktie uses the first four joints; full 90-number pose vectors are accepted for it too.
-  const char* alsoFull = poseSize == 36 ? " (or 90, of which the first 36 are used)" : "";
+  const std::string alsoFull = poseSize == body::kNecktiePoseSize ? " (or " + std::to_string(body::kPoseSize) +
+                                                                        ", of which the first " +
+                                                                        std::to_string(poseSize) + " are used)"
+                                                                  : "";
   std::vector<Eigen::VectorXf> poses;
   if (ext == ".json") {
     json j = core::readJson(path);
@@ -94,7 +98,7 @@ std::vector<Eigen::VectorXf> readPoseSequence(const fs::path& path, int poseSize
       const std::string context = file + ": pose " + std::to_string(i);
       const json& entry = j[i];
       if (entry.is_array()) {
-        PIXELCLOTH_CHECK(entry.size() == static_cast<size_t>(poseSize) || entry.size() == 90,
+        PIXELCLOTH_CHECK(entry.size() == static_cast<size_t>(poseSize) || entry.size() == static_cast<size_t>(body::kPoseSize),
                          context << ": " << entry.size() << " numbers, expected " << poseSize << alsoFull);
         Eigen::VectorXf values(entry.size());
         for (int k = 0; k < static_cast<int>(entry.size()); ++k) {
@@ -135,7 +139,7 @@ std::vector<Eigen::VectorXf> readPoseSequence(const fs::path& path, int poseSize
       const std::string context = file + ": line " + std::to_string(lineNumber);
       if (!numeric && poses.empty() && lineNumber == 1) continue;  // header row
       PIXELCLOTH_CHECK(numeric, context << ": expected " << poseSize << " comma-separated numbers");
-      PIXELCLOTH_CHECK(values.size() == static_cast<size_t>(poseSize) || values.size() == 90,
+      PIXELCLOTH_CHECK(values.size() == static_cast<size_t>(poseSize) || values.size() == static_cast<size_t>(body::kPoseSize),
                        context << ": " << values.size() << " columns, expected " << poseSize << alsoFull);
       poses.push_back(checkedPose(Eigen::Map<const Eigen::VectorXf>(values.data(), values.size()), poseSize, context));
     }
@@ -150,7 +154,7 @@ DatasetSettings importDataset(const std::vector<fs::path>& objs, const fs::path&
   PIXELCLOTH_CHECK(!objs.empty(), "dataset import: no OBJ files");
   DatasetSettings settings;
   settings.garment = garment.name;
-  settings.poseSize = garment.name == "necktie" ? 36 : 90;
+  settings.poseSize = garment::poseSizeOf(garment.name);
   settings.vertexCount = garment.mesh.numVertices();
   settings.seed = options.seed;
   settings.count = static_cast<int>(objs.size());

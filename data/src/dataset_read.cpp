@@ -157,7 +157,7 @@ Eigen::MatrixX3d loadDatasetRestPositions(const fs::path& folder, int vertexCoun
 }
 
 garment::Garment datasetGarment(const DatasetInfo& info) {
-  garment::Garment garment = info.settings.garment == "tshirt" ? garment::makeTShirt() : garment::makeNecktie();
+  garment::Garment garment = garment::makeGarment(info.settings.garment, info.folder.string() + ": manifest.json: garment");
   const fs::path stored = info.folder / "garment" / "garment.obj";
   const core::Mesh mesh = core::readMesh(stored);
   PIXELCLOTH_CHECK(mesh.numVertices() == garment.mesh.numVertices() && mesh.F == garment.mesh.F,

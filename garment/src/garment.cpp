@@ -45,11 +45,6 @@ constexpr int kMaxSizeTrials = 8;
 /// Relative tolerance on the vertex count: stop searching the edge-length bound once within it.
 constexpr double kVertexCountTolerance = 0.02;
 
-std::uint64_t edgeKey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
-}
-
 /// The triangulation of one layout, before merging.
 struct LayoutMesh {
   Eigen::MatrixX2d UV;                      // #v x 2 layout coordinates

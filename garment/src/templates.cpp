@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/garment/garment.h"
 
@@ -18,6 +19,10 @@ Garment makeGarment(const std::string& name, const std::string& context) {
   std::string known;
   for (const std::string& n : templateNames()) known += (known.empty() ? "" : ", ") + n;
   PIXELCLOTH_FAIL(context << ": unknown garment template '" << name << "'; expected one of: " << known);
+}
+
+int poseSizeOf(const std::string& garmentName) {
+  return garmentName == "necktie" ? body::kNecktiePoseSize : body::kPoseSize;
 }
 
 }  // namespace pixelcloth::garment

@@ -184,7 +184,7 @@ data::Sample GarmentSimulator::simulate(const body::Pose& pose) {
   sample.stats.iterations = iterations;
   sample.stats.residual = report.residual;
   sample.pose = pose.toVector();
-  if (garment_.name == "necktie") sample.pose = sample.pose.head(36).eval();
+  sample.pose = sample.pose.head(garment::poseSizeOf(garment_.name)).eval();
   sample.positions = x.cast<float>();
   if (sample.stats.rejection != data::Rejection::NotFinite) {
     const garment::EmbeddedFrames frames = garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding);

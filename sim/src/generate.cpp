@@ -135,12 +135,12 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json bodyDescription;
   const body::Body body = makeBody(options, bodyDescription);
-  const garment::Garment garment = options.garment == "necktie" ? garment::makeNecktie() : garment::makeTShirt();
+  const garment::Garment garment = garment::makeGarment(options.garment, "generate: --garment");
   if (options.simulation.pinned.empty()) options.simulation.pinned = defaultPins(garment);
 
   data::DatasetSettings settings;
   settings.garment = options.garment;
-  settings.poseSize = options.garment == "necktie" ? 36 : 90;
+  settings.poseSize = garment::poseSizeOf(options.garment);
   settings.vertexCount = garment.mesh.numVertices();
   settings.seed = options.seed;
   settings.count = options.count;

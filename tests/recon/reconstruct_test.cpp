@@ -1,12 +1,27 @@
-// The posed body of a reconstruction: rebuilt vertices inside the body, or nearer it than the clearance, are moved
-// out along its normal; the others stay.
+// Garments from markers: the posed body keeps rebuilt vertices out of it; every method passes through its markers and
+// rebuilds a worn shirt; the dataset evaluation writes its metrics and meshes.
 #include "pixelcloth/recon/reconstruct.h"
 
 #include <gtest/gtest.h>
 
-#include "support/fixtures.h"
-#include "pixelcloth/garment/embedding.h"
+#include <iostream>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "pixelcloth/cage/body_cage.h"
+#include "pixelcloth/cage/dressing.h"
+#include "pixelcloth/cage/garment_cage.h"
+#include "pixelcloth/cage/markers.h"
 #include "pixelcloth/core/mesh.h"
+#include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/data/dataset.h"
+#include "pixelcloth/garment/embedding.h"
+#include "support/fixtures.h"
+#include "support/test_util.h"
 
 namespace pc = pixelcloth::core;
 namespace pb = pixelcloth::body;
@@ -50,4 +65,165 @@ TEST(PosedBody, PushesPointsInsideOutToTheClearanceAndLeavesTheOthers) {
   Eigen::MatrixX3d far = outside;
   EXPECT_EQ(posed.pushOut(far, clearance), 0);
   EXPECT_EQ(far, outside);
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// The reconstruction as a library: markers -> spline cage -> fill -> clearance, and its evaluation on a dataset.
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace pcg = pixelcloth::cage;
+namespace pd = pixelcloth::data;
+
+/// The T-shirt dressed on the coarse mannequin, with a reconstructor over it.
+struct Dressed {
+  const pb::Body& body = pixelcloth::testing::coarseMannequin();
+  const pg::Garment& garment = pixelcloth::testing::tshirt();
+  pcg::Dressing dressing;
+  std::unique_ptr<pr::GarmentReconstructor> reconstructor;
+  pcg::MarkerSet definition;
+
+  Dressed() {
+    dressing = pcg::dressGarment(body, pcg::bodyCage(body), garment, pcg::garmentCage(garment));
+    reconstructor =
+        std::make_unique<pr::GarmentReconstructor>(body, garment, dressing.embedding, dressing.relaxed);
+    definition = pcg::defineMarkers(garment, reconstructor->cage());
+  }
+
+  /// A worn shape of the dressed shirt in `pose`: its rest offsets carried by the posed body, plus a smooth bulge.
+  Eigen::MatrixX3d worn(const pb::Pose& pose, double bulge) const {
+    const pg::EmbeddedFrames rest = pg::embeddedFrames(body.mesh.V, body.mesh.F, dressing.embedding);
+    Eigen::MatrixX3d offsets = pg::offsetsFromPositions(rest, dressing.relaxed);
+    for (int v = 0; v < offsets.rows(); ++v)
+      offsets(v, 2) += bulge * (1 + std::sin(4 * dressing.relaxed(v, 1)) * std::cos(5 * dressing.relaxed(v, 0)));
+    const pg::EmbeddedFrames posed = pg::embeddedFrames(body.posedVertices(pose), body.mesh.F, dressing.embedding);
+    return pg::positionsFromOffsets(posed, offsets);
+  }
+};
+
+const Dressed& dressed() {
+  static const Dressed d;
+  return d;
+}
+
+/// Mean distance between rows of `a` and `b` over `rows` (all rows when empty).
+double meanError(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b, const std::vector<int>& rows = {}) {
+  if (rows.empty()) return (a - b).rowwise().norm().mean();
+  double sum = 0;
+  for (int r : rows) sum += (a.row(r) - b.row(r)).norm();
+  return sum / rows.size();
+}
+
+std::vector<int> cageVertices(const pcg::Cage& cage) {
+  std::set<int> vertices;
+  for (const pcg::CageCurve& curve : cage.curves) vertices.insert(curve.vertices.begin(), curve.vertices.end());
+  return {vertices.begin(), vertices.end()};
+}
+
+}  // namespace
+
+TEST(GarmentReconstructor, EveryMethodPassesThroughTheMarkersAndRebuildsAWornShirt) {
+  const Dressed& d = dressed();
+  const pb::Pose pose = pb::randomPose(3, 0.3);
+  const Eigen::MatrixX3d truth = d.worn(pose, 0.004);
+  const pcg::MarkerSet markers = pcg::placeMarkers(d.definition, truth);
+  // The spline holds its segments to worn lengths learned from other shapes of the same shirt (other poses).
+  pr::GarmentReconstructor reconstructor(d.body, d.garment, d.dressing.embedding, d.dressing.relaxed);
+  std::vector<Eigen::MatrixX3d> training;
+  for (int k = 0; k < 6; ++k) training.push_back(d.worn(pb::randomPose(20 + k, 0.3), 0.002 + 0.001 * k));
+  reconstructor.setLengthModel(
+      reconstructor.solver().fitLengthModel(d.definition, training, pcg::MarkerOptions{}.spacing, {}));
+  const std::vector<int> cage = cageVertices(reconstructor.cage());
+  std::map<pr::ReconstructionMethod, double> cageError;
+  for (pr::ReconstructionMethod method : pr::allReconstructionMethods()) {
+    SCOPED_TRACE(pr::reconstructionMethodName(method));
+    const pr::Reconstruction rec = reconstructor.reconstruct(markers, pose, method);
+    ASSERT_EQ(rec.positions.rows(), truth.rows());
+    ASSERT_TRUE(rec.positions.allFinite());
+    // The curves pass through their markers (the clearance may move a marker that is nearer the body than 1 mm).
+    for (const pcg::Marker& marker : markers.markers)
+      EXPECT_LT((rec.cage.row(marker.vertex).transpose() - marker.position).norm(), 1e-4) << marker.name;
+    cageError[method] = meanError(rec.cage, truth, cage);
+    std::cout << "[" << pr::reconstructionMethodName(method) << "] cage " << 100 * cageError[method] << " cm, garment "
+              << 100 * meanError(rec.positions, truth) << " cm\n";
+    EXPECT_LT(cageError[method], 0.01);
+    EXPECT_LT(meanError(rec.positions, truth), 0.02);
+  }
+  // Between markers about 10 cm apart on a smooth shirt, the curves beat straight lines.
+  EXPECT_LT(cageError[pr::ReconstructionMethod::Spline], cageError[pr::ReconstructionMethod::Linear]);
+  EXPECT_LT(cageError[pr::ReconstructionMethod::CatmullRom], cageError[pr::ReconstructionMethod::Linear]);
+}
+
+TEST(GarmentReconstructor, FillFromTheTrueCageReproducesASmoothShirt) {
+  const Dressed& d = dressed();
+  const pb::Pose pose = pb::randomPose(5, 0.3);
+  const Eigen::MatrixX3d truth = d.worn(pose, 0.0);
+  const pr::PosedBody posed = d.reconstructor->posed(pose);
+  for (bool anisotropic : {false, true}) {
+    const pr::Reconstruction rec = d.reconstructor->fillFromCage(truth, posed, anisotropic);
+    // The dressed shirt's offsets vary slowly between cage curves, so harmonic interiors are close to them.
+    EXPECT_LT(meanError(rec.positions, truth), 0.005) << (anisotropic ? "anisotropic" : "isotropic");
+  }
+}
+
+TEST(GarmentReconstructor, RefusesMarkersOfAnotherGarment) {
+  const Dressed& d = dressed();
+  pcg::MarkerSet markers = pcg::placeMarkers(d.definition, d.dressing.relaxed);
+  markers.garment = "necktie";
+  EXPECT_NE(pixelcloth::testing::inputErrorOf([&] { d.reconstructor->reconstruct(markers, pb::Pose::identity()); })
+                .find("necktie"),
+            std::string::npos);
+}
+
+TEST(ReconstructDataset, WritesMetricsForEveryMethodAndTheFirstMeshes) {
+  const Dressed& d = dressed();
+  const fs::path folder = pixelcloth::testing::freshDir("dataset"), out = pixelcloth::testing::freshDir("out");
+  pd::DatasetSettings settings;
+  settings.garment = "tshirt";
+  settings.poseSize = pb::kPoseSize;
+  settings.vertexCount = d.garment.mesh.numVertices();
+  settings.seed = 3;
+  settings.count = 10;
+  settings.body = {{"kind", "mannequin"}, {"edge_length", 0.02}};
+  {
+    pd::DatasetWriter writer(folder, settings, d.body, d.garment, d.dressing.relaxed, d.dressing.embedding);
+    for (int i : writer.pending()) {
+      const pb::Pose pose = pb::randomPose(100 + i, 0.3);
+      const Eigen::MatrixX3d positions = d.worn(pose, 0.002 + 0.0005 * i);
+      const pg::EmbeddedFrames frames = pg::embeddedFrames(d.body.posedVertices(pose), d.body.mesh.F,
+                                                           d.dressing.embedding);
+      pd::Sample sample;
+      sample.pose = pose.toVector();
+      sample.positions = positions.cast<float>();
+      sample.offsets = pg::offsetsFromPositions(frames, positions).cast<float>();
+      writer.add(i, sample);
+    }
+    writer.finish();
+  }
+  pr::DatasetReconstructionOptions options;
+  options.split = "all";
+  options.meshes = 1;
+  options.quiet = true;
+  const pr::DatasetReconstructionReport report = pr::reconstructDataset(folder, out, options);
+  EXPECT_EQ(report.samples, 10);
+  ASSERT_EQ(report.meanVertexError.size(), pr::allReconstructionMethods().size());
+  for (pr::ReconstructionMethod method : pr::allReconstructionMethods()) {
+    const nlohmann::json& m = report.metrics["methods"][pr::reconstructionMethodName(method)];
+    EXPECT_GT(m["cage_cm"].get<double>(), 0.0);
+    EXPECT_LT(m["garment_cm"].get<double>(), 2.0);
+  }
+  EXPECT_LT(report.metrics["methods"]["spline"]["cage_cm"].get<double>(),
+            report.metrics["methods"]["linear"]["cage_cm"].get<double>());
+  for (const char* file : {"metrics.json", "markers.json", "length_model.json", "sample_000000/truth.obj",
+                           "sample_000000/spline.obj"})
+    EXPECT_TRUE(fs::exists(out / file)) << file;
+  EXPECT_FALSE(fs::exists(out / "sample_000001"));
+  // The rebuilt mesh on disk is the one measured: its error against the truth is its method's error of that sample.
+  const pc::Mesh truth = pc::readMesh(out / "sample_000000" / "truth.obj");
+  EXPECT_EQ(truth.numVertices(), d.garment.mesh.numVertices());
+
+  options.split = "everything";
+  EXPECT_NE(pixelcloth::testing::inputErrorOf([&] { pr::reconstructDataset(folder, out, options); }).find("split"),
+            std::string::npos);
 }

@@ -61,7 +61,7 @@ void simulatedDataset(Report& report, const body::Body& body, std::uint64_t seed
   const sim::GenerateReport made = sim::generateDataset(report.folder() / folder, generate);
   const data::DatasetCheckReport checked = data::checkDataset(report.folder() / folder);
   const data::Dataset dataset = data::openDataset(report.folder() / folder);
-  const Garment garment = name == "necktie" ? makeNecktie() : makeTShirt();
+  const Garment garment = makeGarment(name);
   patches::ClothImager imager(garment);
   PreviewOptions preview;
   preview.range = 0.05f;

@@ -13,6 +13,9 @@ inline const std::array<std::string, 10> kPoseJoints = {"lower_back", "spine",  
                                                         "l_arm",      "l_forearm", "r_shoulder", "r_arm", "r_forearm"};
 /// Number of floats in a pose vector: 10 row-major 3x3 rotations.
 inline constexpr int kPoseSize = 90;
+/// Floats of a necktie's pose vector: the first four joints (lower_back, spine, spine1, neck), the centre line the tie
+/// hangs from. Pose::fromLeading completes it with identities.
+inline constexpr int kNecktiePoseSize = 36;
 
 /// Range of motion of one posable joint: Euler angles in degrees about the joint's rest axes
 /// (x: flexion / pitch, y: twist about the vertical, z: lateral bend), composed in the order

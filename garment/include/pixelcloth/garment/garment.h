@@ -207,4 +207,8 @@ const std::vector<std::string>& templateNames();
 /// "<context>: unknown garment template 'skirt'; expected one of: tshirt, necktie" for any other name.
 Garment makeGarment(const std::string& name, const std::string& context = "garment");
 
+/// Floats of the pose vector a garment's data holds: body::kNecktiePoseSize (the centre-line joints) for the necktie,
+/// body::kPoseSize for every other garment.
+int poseSizeOf(const std::string& garmentName);
+
 }  // namespace pixelcloth::garment

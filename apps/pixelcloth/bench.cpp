@@ -10,17 +10,17 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "pixelcloth/body/body.h"
 #include "pixelcloth/cage/body_cage.h"
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/cage/markers.h"
 #include "pixelcloth/cage/spline_solver.h"
 #include "pixelcloth/core/atomic_file.h"
-#include "pixelcloth/body/body.h"
-#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/frame.h"
 #include "pixelcloth/patches/garment_fill.h"
 #include "pixelcloth/patches/raster.h"

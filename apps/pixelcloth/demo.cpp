@@ -1,8 +1,9 @@
 // pixelcloth demo: everything that exists, end to end, on the built-in body and garments, as a report folder of
 // pictures (index.html, report.json). The sections are viz/'s; this verb runs them in the order of the data flow.
+#include "pixelcloth/viz/demo.h"
+
 #include <memory>
 
-#include "pixelcloth/viz/demo.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {

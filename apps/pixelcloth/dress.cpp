@@ -4,18 +4,18 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "pixelcloth/body/body.h"
 #include "pixelcloth/cage/body_cage.h"
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/atomic_file.h"
-#include "pixelcloth/body/body.h"
 #include "pixelcloth/core/error.h"
-#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
-#include "pixelcloth/viz/previews.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/viz/pictures.h"
+#include "pixelcloth/viz/previews.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {

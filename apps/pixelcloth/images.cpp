@@ -3,12 +3,12 @@
 #include <memory>
 
 #include "pixelcloth/core/atomic_file.h"
-#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/npy.h"
 #include "pixelcloth/core/progress.h"
-#include "pixelcloth/patches/cloth_image.h"
 #include "pixelcloth/data/dataset.h"
+#include "pixelcloth/garment/garment.h"
+#include "pixelcloth/patches/cloth_image.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 

@@ -10,7 +10,8 @@ int main(int argc, char** argv) {
   CLI::App app{"pixelcloth: data-driven garments in pattern space (pixel-based cloth)", "pixelcloth"};
   app.require_subcommand(1);
   bool quiet = false;
-  app.add_flag("-q,--quiet", quiet, "Silence progress and information on stderr (warnings that data was lost still show)");
+  app.add_flag("-q,--quiet", quiet,
+               "Silence progress and information on stderr (warnings that data was lost still show)");
   app.parse_complete_callback([&] {
     pixelcloth::core::setLogLevel(quiet ? pixelcloth::core::LogLevel::Warning : pixelcloth::core::LogLevel::Info);
   });

@@ -2,9 +2,9 @@
 #include <memory>
 
 #include "pixelcloth/body/body.h"
+#include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
-#include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/sim/pose_sampler.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 
+#include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/cage/body_cage.h"
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/cage/garment_cage.h"
@@ -14,7 +15,6 @@
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
-#include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"

@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 
-
 namespace pixelcloth::apps {
 
 /// Each verb lives in its own file and adds one subcommand to the `pixelcloth` app. The callback
@@ -22,6 +21,5 @@ void registerDataset(CLI::App& app);
 void registerGenerate(CLI::App& app);
 /// `markers` and `reconstruct` (issue 5).
 void registerReconstruct(CLI::App& app);
-
 
 }  // namespace pixelcloth::apps

@@ -5,9 +5,9 @@
 
 #include "pixelcloth/body/body.h"
 #include "pixelcloth/core/error.h"
-#include "pixelcloth/core/mesh_index.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/mesh_index.h"
 
 namespace pixelcloth::body {
 

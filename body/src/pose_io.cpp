@@ -70,5 +70,4 @@ nlohmann::json poseToJson(const Pose& pose) {
   return {{"pose", std::vector<float>(vector.data(), vector.data() + vector.size())}, {"euler_deg", euler}};
 }
 
-
 }  // namespace pixelcloth::body

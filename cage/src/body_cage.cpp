@@ -194,10 +194,11 @@ Cage bodyCage(const body::Body& body, const BodyCageOptions& options) {
       walker.landmark(Vec(neck.x(), neck.y() + 0.005, neck.z()), up, -left, walker.slab(), onNeck, "neck right");
 
   // Arms: loops across the arm at distances along the shoulder-to-elbow direction.
+  struct Ring {
+    int top, bottom, front, back;  ///< landmarks around the arm
+  };
   struct ArmLoops {
-    int shoulderPoint, armpit, armholeFront, armholeBack;
-    int bicepTop, bicepBottom, bicepFront, bicepBack;
-    int hemTop, hemBottom, hemFront, hemBack;
+    Ring armhole, bicep, hem;  ///< the armhole's top is the shoulder point, its bottom the armpit
     Vec axis, shoulder;
   };
   auto armLoops = [&](const std::string& side) {
@@ -211,18 +212,14 @@ Cage bodyCage(const body::Body& body, const BodyCageOptions& options) {
       return walker.landmark(a.shoulder + distance * a.axis, a.axis, direction, walker.slab(), onArmSide,
                              side + " " + what);
     };
-    a.shoulderPoint = at(options.armholeOutsideArm, up, "shoulder point");
-    a.armpit = at(options.armholeOutsideArm, -up, "armpit");
-    a.armholeFront = at(options.armholeOutsideArm, front, "armhole front");
-    a.armholeBack = at(options.armholeOutsideArm, -front, "armhole back");
-    a.bicepTop = at(options.bicepFromShoulder, up, "bicep top");
-    a.bicepBottom = at(options.bicepFromShoulder, -up, "bicep bottom");
-    a.bicepFront = at(options.bicepFromShoulder, front, "bicep front");
-    a.bicepBack = at(options.bicepFromShoulder, -front, "bicep back");
-    a.hemTop = at(options.sleeveHemFromShoulder, up, "sleeve hem top");
-    a.hemBottom = at(options.sleeveHemFromShoulder, -up, "sleeve hem bottom");
-    a.hemFront = at(options.sleeveHemFromShoulder, front, "sleeve hem front");
-    a.hemBack = at(options.sleeveHemFromShoulder, -front, "sleeve hem back");
+    // Braced initialisation runs left to right: top, bottom, front, back.
+    auto ring = [&](double distance, const std::string& top, const std::string& bottom, const std::string& what) {
+      return Ring{at(distance, up, top), at(distance, -up, bottom), at(distance, front, what + " front"),
+                  at(distance, -front, what + " back")};
+    };
+    a.armhole = ring(options.armholeOutsideArm, "shoulder point", "armpit", "armhole");
+    a.bicep = ring(options.bicepFromShoulder, "bicep top", "bicep bottom", "bicep");
+    a.hem = ring(options.sleeveHemFromShoulder, "sleeve hem top", "sleeve hem bottom", "sleeve hem");
     return a;
   };
   ArmLoops leftArm = armLoops("l"), rightArm = armLoops("r");
@@ -260,17 +257,17 @@ Cage bodyCage(const body::Body& body, const BodyCageOptions& options) {
     int hemSide = torsoSide == 0 ? hem.left : hem.right;
     int neckSide = torsoSide == 0 ? neckLeft : neckRight;
     Plane across{a.shoulder + options.armholeOutsideArm * a.axis, a.axis};
-    add("armhole_front_" + side, CurveKind::Seam, false, {a.shoulderPoint, a.armholeFront, a.armpit}, across);
-    add("armhole_back_" + side, CurveKind::Seam, false, {a.shoulderPoint, a.armholeBack, a.armpit}, across);
+    add("armhole_front_" + side, CurveKind::Seam, false, {a.armhole.top, a.armhole.front, a.armhole.bottom}, across);
+    add("armhole_back_" + side, CurveKind::Seam, false, {a.armhole.top, a.armhole.back, a.armhole.bottom}, across);
     Plane bicepPlane{a.shoulder + options.bicepFromShoulder * a.axis, a.axis};
-    add("bicep_" + side, CurveKind::Loop, true, {a.bicepTop, a.bicepFront, a.bicepBottom, a.bicepBack}, bicepPlane);
+    add("bicep_" + side, CurveKind::Loop, true, {a.bicep.top, a.bicep.front, a.bicep.bottom, a.bicep.back}, bicepPlane);
     Plane hemPlane{a.shoulder + options.sleeveHemFromShoulder * a.axis, a.axis};
-    add("sleeve_hem_" + side, CurveKind::Opening, true, {a.hemTop, a.hemFront, a.hemBottom, a.hemBack}, hemPlane);
+    add("sleeve_hem_" + side, CurveKind::Opening, true, {a.hem.top, a.hem.front, a.hem.bottom, a.hem.back}, hemPlane);
     Plane armTop{a.shoulder, front};
-    add("shoulder_" + side, CurveKind::Seam, false, {neckSide, a.shoulderPoint}, armTop);
-    add("sleeve_top_" + side, CurveKind::Seam, false, {a.shoulderPoint, a.bicepTop, a.hemTop}, armTop);
-    add("underarm_" + side, CurveKind::Seam, false, {a.armpit, a.bicepBottom, a.hemBottom}, armTop);
-    add("side_" + side, CurveKind::Seam, false, {a.armpit, chestSide, waistSide, hemSide}, coronal);
+    add("shoulder_" + side, CurveKind::Seam, false, {neckSide, a.armhole.top}, armTop);
+    add("sleeve_top_" + side, CurveKind::Seam, false, {a.armhole.top, a.bicep.top, a.hem.top}, armTop);
+    add("underarm_" + side, CurveKind::Seam, false, {a.armhole.bottom, a.bicep.bottom, a.hem.bottom}, armTop);
+    add("side_" + side, CurveKind::Seam, false, {a.armhole.bottom, chestSide, waistSide, hemSide}, coronal);
   }
   // Junctions are the landmarks that several curves were planned through (curves computed independently may also
   // touch elsewhere near a junction; those contacts are not nodes). Named like junctions(): every curve, sorted.

@@ -2,7 +2,6 @@
 // edge-length equalisation on the body, embedding.
 #include "pixelcloth/cage/dressing.h"
 
-
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
@@ -278,18 +277,18 @@ Eigen::MatrixX3d harmonicDisplacement(const Eigen::MatrixX3d& V, const Eigen::Ma
   Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(numFree);
   for (int column = 0; column < laplacian.outerSize(); ++column)
     for (Eigen::SparseMatrix<double>::InnerIterator it(laplacian, column); it; ++it) {
-    const int i = static_cast<int>(it.row()), j = static_cast<int>(it.col());
-    if (i >= j) continue;  // each edge once
-    const double w = std::max(it.value(), 1e-3);
-    for (const auto& [p, q] : {std::pair<int, int>{i, j}, std::pair<int, int>{j, i}}) {
-      if (freeIndex[p] < 0) continue;
-      diagonal[freeIndex[p]] += w;
-      if (freeIndex[q] >= 0) {
-        triplets.emplace_back(freeIndex[p], freeIndex[q], -w);
-      } else {
-        rhs.row(freeIndex[p]) += w * displacement.row(q);
+      const int i = static_cast<int>(it.row()), j = static_cast<int>(it.col());
+      if (i >= j) continue;  // each edge once
+      const double w = std::max(it.value(), 1e-3);
+      for (const auto& [p, q] : {std::pair<int, int>{i, j}, std::pair<int, int>{j, i}}) {
+        if (freeIndex[p] < 0) continue;
+        diagonal[freeIndex[p]] += w;
+        if (freeIndex[q] >= 0) {
+          triplets.emplace_back(freeIndex[p], freeIndex[q], -w);
+        } else {
+          rhs.row(freeIndex[p]) += w * displacement.row(q);
+        }
       }
-    }
     }
   // A tiny diagonal term keeps pieces without any cage vertex (none on the T-shirt) solvable: they do not move.
   const double regularisation = 1e-9 * std::max(diagonal.maxCoeff(), 1.0);

@@ -22,7 +22,8 @@ using ShortestPath = CGAL::Surface_mesh_shortest_path<Traits>;
 
 namespace {
 const core::EnumNames<RestLengths, 3> kRestLengths{
-    "rest lengths", {{{RestLengths::Pattern, "pattern"}, {RestLengths::Polyline, "polyline"}, {RestLengths::Geodesic, "geodesic"}}}};
+    "rest lengths",
+    {{{RestLengths::Pattern, "pattern"}, {RestLengths::Polyline, "polyline"}, {RestLengths::Geodesic, "geodesic"}}}};
 }  // namespace
 
 const char* restLengthsName(RestLengths lengths) { return kRestLengths.name(lengths); }

@@ -22,7 +22,8 @@ namespace pixelcloth::cage {
 
 namespace {
 const core::EnumNames<CurveMethod, 3> kCurveMethods{
-    "curve method", {{{CurveMethod::Linear, "linear"}, {CurveMethod::CatmullRom, "catmull_rom"}, {CurveMethod::Spline, "spline"}}}};
+    "curve method",
+    {{{CurveMethod::Linear, "linear"}, {CurveMethod::CatmullRom, "catmull_rom"}, {CurveMethod::Spline, "spline"}}}};
 }  // namespace
 
 const char* curveMethodName(CurveMethod method) { return kCurveMethods.name(method); }

@@ -16,7 +16,8 @@ double doubleArea(const Eigen::VectorXd& e1, const Eigen::VectorXd& e2) {
 }
 
 void checkDimensions(const Eigen::Ref<const Eigen::MatrixXd>& P, const char* what) {
-  PIXELCLOTH_CHECK(P.cols() == 2 || P.cols() == 3, what << ": positions have " << P.cols() << " columns, expected 2 or 3");
+  PIXELCLOTH_CHECK(P.cols() == 2 || P.cols() == 3,
+                   what << ": positions have " << P.cols() << " columns, expected 2 or 3");
 }
 }  // namespace
 
@@ -41,8 +42,8 @@ Eigen::VectorXd areaRatios(const Eigen::MatrixX3d& positions, const Mesh& patter
 Eigen::SparseMatrix<double> cotangentLaplacian(const Eigen::Ref<const Eigen::MatrixXd>& P, const Eigen::MatrixX3i& FP,
                                                const Eigen::MatrixX3i& F, int n) {
   checkDimensions(P, "cotangent Laplacian");
-  PIXELCLOTH_CHECK(FP.rows() == F.rows(), "cotangent Laplacian: " << FP.rows() << " corner rows for " << F.rows()
-                                                                  << " triangles");
+  PIXELCLOTH_CHECK(FP.rows() == F.rows(),
+                   "cotangent Laplacian: " << FP.rows() << " corner rows for " << F.rows() << " triangles");
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(12 * F.rows());
   for (int f = 0; f < F.rows(); ++f) {

@@ -32,7 +32,7 @@ std::uint64_t edgeKey(int a, int b) {
 
 /// What the inside test needs beyond the tree: the pseudo-normals of faces, edges and vertices (built on first use).
 struct PseudoNormals {
-  Eigen::MatrixX3d face, vertex;                    ///< unit face normals; angle-weighted vertex normals
+  Eigen::MatrixX3d face, vertex;                            ///< unit face normals; angle-weighted vertex normals
   std::unordered_map<std::uint64_t, Eigen::Vector3d> edge;  ///< sum of the normals of the faces around an edge
 };
 
@@ -95,8 +95,8 @@ MeshHit MeshIndex::closest(const Eigen::Vector3d& p) const {
 }
 
 MeshHit MeshIndex::closest(const Eigen::Vector3d& p, const MeshHit& near) const {
-  PIXELCLOTH_CHECK(near.face >= 0 && near.face < impl_->F.rows(), "spatial index: hint face " << near.face
-                                                                      << " is outside [0, " << impl_->F.rows() << ")");
+  PIXELCLOTH_CHECK(near.face >= 0 && near.face < impl_->F.rows(),
+                   "spatial index: hint face " << near.face << " is outside [0, " << impl_->F.rows() << ")");
   const auto hint = std::make_pair(toPoint(near.point), impl_->triangles.cbegin() + near.face);
   return impl_->hit(impl_->faceOf(impl_->tree.closest_point_and_primitive(toPoint(p), hint).second), p);
 }

@@ -13,14 +13,14 @@
 #include <set>
 
 #include "dataset_internal.h"
-#include "pixelcloth/core/enum_names.h"
+#include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/npy.h"
 #include "pixelcloth/core/progress.h"
-#include "pixelcloth/body/skeleton.h"
 
 namespace pixelcloth::data {
 
@@ -155,13 +155,14 @@ SplitCounts countSplits(const std::vector<std::uint8_t>& split) {
 }
 
 void DatasetStats::add(const SampleStats& s) {
-  ++accepted;
-  maxPenetration = std::max(maxPenetration, s.maxPenetration);
-  sumIterations += s.iterations;
-  maxIterations = std::max(maxIterations, s.iterations);
-  sumSeconds += s.seconds;
-  minAreaRatio = std::min(minAreaRatio, s.minAreaRatio);
-  maxAreaRatio = std::max(maxAreaRatio, s.maxAreaRatio);
+  DatasetStats one;  // the statistics of this sample alone
+  one.accepted = 1;
+  one.maxPenetration = s.maxPenetration;
+  one.sumIterations = one.maxIterations = s.iterations;
+  one.sumSeconds = s.seconds;
+  one.minAreaRatio = s.minAreaRatio;
+  one.maxAreaRatio = s.maxAreaRatio;
+  merge(one);
 }
 
 void DatasetStats::reject(Rejection rejection, int count) { rejected[rejectionName(rejection)] += count; }
@@ -327,7 +328,8 @@ bool pathContains(const std::string& name, const std::string& part) { return nam
 
 /// Writes what describes the garment on the body (body/, garment/, rest positions, embedding) into `folder`.
 void writeShared(const fs::path& folder, const body::Body& body, const garment::Garment& garment,
-                 const Eigen::MatrixX3d& restPositions, const garment::Embedding& embedding, const std::string& bodyText) {
+                 const Eigen::MatrixX3d& restPositions, const garment::Embedding& embedding,
+                 const std::string& bodyText) {
   body::saveBody(folder / "body", body, bodyText);
   garment::saveGarment(folder / "garment", garment);
   core::writeNpy(folder / kRestPositions, Eigen::MatrixXd(restPositions));

@@ -5,15 +5,15 @@
 #include <fstream>
 #include <sstream>
 
+#include "pixelcloth/body/pose_io.h"
+#include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/geometry.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
-#include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/core/progress.h"
-#include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/data/dataset.h"
 
 namespace pixelcloth::data {
@@ -79,16 +79,17 @@ std::vector<fs::path> objSequence(const fs::path& folder) {
 }
 
 std::vector<Eigen::VectorXf> readPoseSequence(const fs::path& path, int poseSize) {
-  PIXELCLOTH_CHECK(poseSize == body::kPoseSize || poseSize == body::kNecktiePoseSize,
-                   "poses: pose size " << poseSize << ", expected " << body::kPoseSize << " or " << body::kNecktiePoseSize);
+  PIXELCLOTH_CHECK(
+      poseSize == body::kPoseSize || poseSize == body::kNecktiePoseSize,
+      "poses: pose size " << poseSize << ", expected " << body::kPoseSize << " or " << body::kNecktiePoseSize);
   const std::string file = path.string();
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   // The necktie uses the first four joints; full 90-number pose vectors are accepted for it too.
-  const std::string alsoFull = poseSize == body::kNecktiePoseSize ? " (or " + std::to_string(body::kPoseSize) +
-                                                                        ", of which the first " +
-                                                                        std::to_string(poseSize) + " are used)"
-                                                                  : "";
+  const std::string alsoFull = poseSize == body::kNecktiePoseSize
+                                   ? " (or " + std::to_string(body::kPoseSize) + ", of which the first " +
+                                         std::to_string(poseSize) + " are used)"
+                                   : "";
   std::vector<Eigen::VectorXf> poses;
   if (ext == ".json") {
     json j = core::readJson(path);
@@ -98,8 +99,9 @@ std::vector<Eigen::VectorXf> readPoseSequence(const fs::path& path, int poseSize
       const std::string context = file + ": pose " + std::to_string(i);
       const json& entry = j[i];
       if (entry.is_array()) {
-        PIXELCLOTH_CHECK(entry.size() == static_cast<size_t>(poseSize) || entry.size() == static_cast<size_t>(body::kPoseSize),
-                         context << ": " << entry.size() << " numbers, expected " << poseSize << alsoFull);
+        PIXELCLOTH_CHECK(
+            entry.size() == static_cast<size_t>(poseSize) || entry.size() == static_cast<size_t>(body::kPoseSize),
+            context << ": " << entry.size() << " numbers, expected " << poseSize << alsoFull);
         Eigen::VectorXf values(entry.size());
         for (int k = 0; k < static_cast<int>(entry.size()); ++k) {
           PIXELCLOTH_CHECK(entry[k].is_number(),
@@ -139,8 +141,9 @@ std::vector<Eigen::VectorXf> readPoseSequence(const fs::path& path, int poseSize
       const std::string context = file + ": line " + std::to_string(lineNumber);
       if (!numeric && poses.empty() && lineNumber == 1) continue;  // header row
       PIXELCLOTH_CHECK(numeric, context << ": expected " << poseSize << " comma-separated numbers");
-      PIXELCLOTH_CHECK(values.size() == static_cast<size_t>(poseSize) || values.size() == static_cast<size_t>(body::kPoseSize),
-                       context << ": " << values.size() << " columns, expected " << poseSize << alsoFull);
+      PIXELCLOTH_CHECK(
+          values.size() == static_cast<size_t>(poseSize) || values.size() == static_cast<size_t>(body::kPoseSize),
+          context << ": " << values.size() << " columns, expected " << poseSize << alsoFull);
       poses.push_back(checkedPose(Eigen::Map<const Eigen::VectorXf>(values.data(), values.size()), poseSize, context));
     }
   }

@@ -7,11 +7,11 @@
 #include <sstream>
 
 #include "dataset_internal.h"
+#include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/progress.h"
-#include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/data/dataset.h"
 
 namespace pixelcloth::data {
@@ -157,7 +157,8 @@ Eigen::MatrixX3d loadDatasetRestPositions(const fs::path& folder, int vertexCoun
 }
 
 garment::Garment datasetGarment(const DatasetInfo& info) {
-  garment::Garment garment = garment::makeGarment(info.settings.garment, info.folder.string() + ": manifest.json: garment");
+  garment::Garment garment =
+      garment::makeGarment(info.settings.garment, info.folder.string() + ": manifest.json: garment");
   const fs::path stored = info.folder / "garment" / "garment.obj";
   const core::Mesh mesh = core::readMesh(stored);
   PIXELCLOTH_CHECK(mesh.numVertices() == garment.mesh.numVertices() && mesh.F == garment.mesh.F,

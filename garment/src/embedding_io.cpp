@@ -1,9 +1,9 @@
 // Embedding arrays on disk: embedding_triangle.npy, embedding_barycentric.npy, embedding_tangent.npy.
 #include <limits>
 
-#include "pixelcloth/garment/embedding.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/npy.h"
+#include "pixelcloth/garment/embedding.h"
 
 namespace pixelcloth::garment {
 

@@ -262,7 +262,6 @@ pattern::MergedPattern merge(const std::vector<pattern::Curve>& curves, const st
   return merged;
 }
 
-
 }  // namespace
 
 namespace pattern {
@@ -428,6 +427,5 @@ std::string Garment::summary() const {
       << lines.size() << " cage lines";
   return out.str();
 }
-
 
 }  // namespace pixelcloth::garment

@@ -1,7 +1,7 @@
 // Garment folders: garment.obj + garment.json.
-#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/garment/garment.h"
 
 namespace pixelcloth::garment {
 

@@ -95,7 +95,6 @@ ClothImage readClothImage(const std::filesystem::path& path) {
   return ClothImage::fromExr(exr);
 }
 
-
 ImageFrame clothImageFrame(const garment::Garment& garment, int layout, int width, int height, double margin) {
   PIXELCLOTH_CHECK(layout >= 0 && layout < garment.numLayouts(),
                    garment.name << ": layout " << layout << " does not exist (" << garment.numLayouts() << " layouts)");

@@ -1,5 +1,4 @@
 #include "pixelcloth/patches/patch.h"
-#include "pixelcloth/patches/frame.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +9,7 @@
 #include <tuple>
 
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/patches/frame.h"
 
 namespace pixelcloth::patches {
 
@@ -126,6 +126,5 @@ Eigen::Vector2d patchPixelExtent(const garment::Garment& garment, const Patch& p
   }
   return box.sizes() / frame.metresPerPixel;
 }
-
 
 }  // namespace pixelcloth::patches

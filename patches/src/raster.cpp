@@ -479,26 +479,30 @@ void saveOperator(const std::filesystem::path& path, const SampleOperator& sampl
   writeOperatorFile(path, {kSample, sample.layout, sample.frame, sample.matrix, {}, sample.vertices});
 }
 
+namespace {
+/// The fields both operators share, moved out of a file that was read.
+template <typename Operator>
+Operator operatorFrom(OperatorFile& file) {
+  Operator op;
+  op.frame = file.frame;
+  op.layout = file.layout;
+  op.matrix = std::move(file.matrix);
+  op.vertices = std::move(file.vertices);
+  return op;
+}
+}  // namespace
+
 RasterOperator loadRasterOperator(const std::filesystem::path& path) {
   OperatorFile file = readOperatorFile(path, kRaster);
-  RasterOperator raster;
-  raster.frame = file.frame;
-  raster.layout = file.layout;
-  raster.matrix = std::move(file.matrix);
+  RasterOperator raster = operatorFrom<RasterOperator>(file);
   raster.mask = std::move(file.mask);
-  raster.vertices = std::move(file.vertices);
   raster.pack();
   return raster;
 }
 
 SampleOperator loadSampleOperator(const std::filesystem::path& path) {
   OperatorFile file = readOperatorFile(path, kSample);
-  SampleOperator sample;
-  sample.frame = file.frame;
-  sample.layout = file.layout;
-  sample.matrix = std::move(file.matrix);
-  sample.vertices = std::move(file.vertices);
-  return sample;
+  return operatorFrom<SampleOperator>(file);
 }
 
 }  // namespace pixelcloth::patches

@@ -2,7 +2,6 @@
 // evaluation of every method on a dataset split.
 #include "pixelcloth/recon/reconstruct.h"
 
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,8 +10,8 @@
 #include <sstream>
 
 #include "pixelcloth/cage/garment_cage.h"
-#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
@@ -20,21 +19,22 @@
 #include "pixelcloth/core/mesh_index.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/progress.h"
+#include "pixelcloth/data/dataset.h"
 #include "pixelcloth/patches/frame.h"
 #include "pixelcloth/patches/garment_fill.h"
 #include "pixelcloth/patches/patch.h"
-#include "pixelcloth/data/dataset.h"
 
 namespace pixelcloth::recon {
 
 namespace fs = std::filesystem;
 
 namespace {
-const core::EnumNames<ReconstructionMethod, 4> kMethods{"reconstruction method",
-                                                        {{{ReconstructionMethod::Linear, "linear"},
-                                                          {ReconstructionMethod::CatmullRom, "catmull_rom"},
-                                                          {ReconstructionMethod::Spline, "spline"},
-                                                          {ReconstructionMethod::SplineAnisotropic, "spline_anisotropic"}}}};
+const core::EnumNames<ReconstructionMethod, 4> kMethods{
+    "reconstruction method",
+    {{{ReconstructionMethod::Linear, "linear"},
+      {ReconstructionMethod::CatmullRom, "catmull_rom"},
+      {ReconstructionMethod::Spline, "spline"},
+      {ReconstructionMethod::SplineAnisotropic, "spline_anisotropic"}}}};
 }  // namespace
 
 const char* reconstructionMethodName(ReconstructionMethod method) { return kMethods.name(method); }
@@ -165,7 +165,8 @@ const cage::CageSplineSolver& GarmentReconstructor::solver() const { return *imp
 
 PosedBody GarmentReconstructor::posed(const body::Pose& pose) const {
   const Eigen::MatrixX3d vertices = impl_->body.posedVertices(pose);
-  return PosedBody(vertices, impl_->body.mesh.F, garment::embeddedFrames(vertices, impl_->body.mesh.F, impl_->embedding));
+  return PosedBody(vertices, impl_->body.mesh.F,
+                   garment::embeddedFrames(vertices, impl_->body.mesh.F, impl_->embedding));
 }
 
 Reconstruction GarmentReconstructor::fillFromCage(const Eigen::MatrixX3d& cagePositions, const PosedBody& body,
@@ -226,7 +227,8 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
   const data::Dataset dataset = data::openDataset(datasetFolder);
   std::vector<int> rows;
   for (int r = 0; r < dataset.rows(); ++r)
-    if (options.split == "all" || options.split == data::splitName(static_cast<data::Split>(dataset.split[r]))) rows.push_back(r);
+    if (options.split == "all" || options.split == data::splitName(static_cast<data::Split>(dataset.split[r])))
+      rows.push_back(r);
   PIXELCLOTH_CHECK(!rows.empty(), datasetFolder.string() << ": the " << options.split << " split has no samples ("
                                                          << dataset.rows() << " in the folder); try --split all");
   const garment::Garment garment = data::datasetGarment(dataset.info);

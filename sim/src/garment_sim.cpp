@@ -52,8 +52,9 @@ std::vector<int> defaultPins(const garment::Garment& garment) {
   return pins;
 }
 
-GarmentSimulator::GarmentSimulator(const body::Body& body, const garment::Garment& garment, const cage::Dressing& dressing,
-                                   const SimulationOptions& options, const Eigen::MatrixX3d* settled)
+GarmentSimulator::GarmentSimulator(const body::Body& body, const garment::Garment& garment,
+                                   const cage::Dressing& dressing, const SimulationOptions& options,
+                                   const Eigen::MatrixX3d* settled)
     : body_(body), garment_(garment), dressing_(dressing), options_(options) {
   options_.validate();
   const int n = garment.mesh.numVertices();

@@ -206,8 +206,8 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
 namespace pixelcloth::sim {
 
 std::vector<data::SampleStats> simulatePoses(const body::Body& body, const garment::Garment& garment,
-                                       const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
-                                       const SimulationOptions& options, int threads, bool quiet) {
+                                             const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
+                                             const SimulationOptions& options, int threads, bool quiet) {
   std::vector<data::SampleStats> stats(poses.size());
   if (poses.empty()) return stats;
   GarmentSimulator first(body, garment, dressing, options);

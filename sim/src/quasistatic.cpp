@@ -31,11 +31,11 @@ struct Closest {
 /// lazily after the vertices move).
 struct ColliderState {
   Collider mesh;
-  Eigen::MatrixX3d normals;               ///< per face
-  Eigen::MatrixX3d vertexNormals;         ///< per vertex, angle-weighted (unnormalised)
-  std::vector<int> ringStart, ringFaces;  ///< faces around vertex v: ringFaces[ringStart[v] .. ringStart[v + 1])
-  std::vector<int> across;                ///< 3 f + k: the face across the edge opposite corner k of f, or -1
-  std::vector<bool> onBoundary;           ///< per vertex: on an edge with one face (body parts are open meshes)
+  Eigen::MatrixX3d normals;                ///< per face
+  Eigen::MatrixX3d vertexNormals;          ///< per vertex, angle-weighted (unnormalised)
+  std::vector<int> ringStart, ringFaces;   ///< faces around vertex v: ringFaces[ringStart[v] .. ringStart[v + 1])
+  std::vector<int> across;                 ///< 3 f + k: the face across the edge opposite corner k of f, or -1
+  std::vector<bool> onBoundary;            ///< per vertex: on an edge with one face (body parts are open meshes)
   std::unique_ptr<core::MeshIndex> index;  ///< built on first use after the vertices move
 
   explicit ColliderState(Collider collider) : mesh(std::move(collider)) {

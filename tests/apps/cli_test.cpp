@@ -18,13 +18,13 @@
 #include <string>
 #include <vector>
 
-#include "support/test_util.h"
-#include "pixelcloth/garment/embedding.h"
 #include "pixelcloth/core/exr_io.h"
-#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
+#include "pixelcloth/garment/embedding.h"
+#include "pixelcloth/garment/garment.h"
+#include "support/test_util.h"
 
 namespace pixelcloth::apps {
 namespace {

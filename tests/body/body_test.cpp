@@ -7,8 +7,8 @@
 #include <cmath>
 #include <fstream>
 
-#include "support/body_fixtures.h"
 #include "pixelcloth/core/error.h"
+#include "support/body_fixtures.h"
 #include "support/test_util.h"
 
 namespace pc = pixelcloth::core;

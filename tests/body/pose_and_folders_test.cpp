@@ -3,14 +3,14 @@
 
 #include <fstream>
 
-#include "support/body_fixtures.h"
-#include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/body/body.h"
+#include "pixelcloth/body/pose_io.h"
+#include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
-#include "pixelcloth/body/pose_io.h"
+#include "support/body_fixtures.h"
 #include "support/test_util.h"
 
 namespace pc = pixelcloth::core;

@@ -8,8 +8,8 @@
 #include <set>
 #include <sstream>
 
-#include "support/fixtures.h"
 #include "pixelcloth/body/body.h"
+#include "support/fixtures.h"
 
 namespace pcg = pixelcloth::cage;
 namespace pc = pixelcloth::core;

@@ -1,6 +1,5 @@
 // Dressing: cage morph onto the body cage, push-out, edge-length relaxation on the body, embedding.
 #include "pixelcloth/cage/dressing.h"
-#include "pixelcloth/core/mesh_index.h"
 
 #include <gtest/gtest.h>
 
@@ -9,10 +8,11 @@
 #include <limits>
 #include <vector>
 
-#include "support/fixtures.h"
-#include "support/test_util.h"
 #include "pixelcloth/cage/body_cage.h"
 #include "pixelcloth/cage/garment_cage.h"
+#include "pixelcloth/core/mesh_index.h"
+#include "support/fixtures.h"
+#include "support/test_util.h"
 
 namespace {
 

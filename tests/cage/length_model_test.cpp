@@ -6,12 +6,12 @@
 
 #include <fstream>
 
-#include "support/test_util.h"
-#include "support/cage_fixtures.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/cage/geodesic.h"
 #include "pixelcloth/cage/spline_solver.h"
 #include "pixelcloth/core/json_io.h"
+#include "support/cage_fixtures.h"
+#include "support/test_util.h"
 
 namespace pcg = pixelcloth::cage;
 using pixelcloth::testing::inputErrorOf;

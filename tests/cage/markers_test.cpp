@@ -9,11 +9,11 @@
 #include <functional>
 #include <set>
 
-#include "support/test_util.h"
-#include "support/cage_fixtures.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/cage/geodesic.h"
 #include "pixelcloth/core/json_io.h"
+#include "support/cage_fixtures.h"
+#include "support/test_util.h"
 
 namespace pcg = pixelcloth::cage;
 using pixelcloth::testing::inputErrorOf;

@@ -9,10 +9,10 @@
 #include <cmath>
 #include <random>
 
-#include "support/fixtures.h"
-#include "support/test_util.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/cage/spline_residuals.h"
+#include "support/fixtures.h"
+#include "support/test_util.h"
 
 namespace pcg = pixelcloth::cage;
 

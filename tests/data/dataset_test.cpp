@@ -9,12 +9,12 @@
 #include <set>
 #include <thread>
 
-#include "support/fixtures.h"
-#include "support/test_util.h"
+#include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
-#include "pixelcloth/body/skeleton.h"
+#include "support/fixtures.h"
+#include "support/test_util.h"
 
 namespace pc = pixelcloth::core;
 namespace pb = pixelcloth::body;

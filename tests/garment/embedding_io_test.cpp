@@ -1,9 +1,9 @@
 // Embedding arrays on disk.
 #include <gtest/gtest.h>
 
-#include "support/fixtures.h"
-#include "pixelcloth/garment/embedding.h"
 #include "pixelcloth/core/npy.h"
+#include "pixelcloth/garment/embedding.h"
+#include "support/fixtures.h"
 #include "support/test_util.h"
 
 namespace pc = pixelcloth::core;

@@ -6,9 +6,9 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "support/fixtures.h"
 #include "pixelcloth/body/body.h"
 #include "pixelcloth/core/error.h"
+#include "support/fixtures.h"
 
 namespace pc = pixelcloth::core;
 namespace pb = pixelcloth::body;

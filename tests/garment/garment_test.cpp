@@ -11,15 +11,14 @@
 #include <set>
 #include <unordered_set>
 
-#include "support/fixtures.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/image.h"
 #include "pixelcloth/core/mesh.h"
+#include "support/fixtures.h"
 #include "support/test_util.h"
 
 namespace pc = pixelcloth::core;
 namespace pg = pixelcloth::garment;
-
 
 namespace {
 const pixelcloth::garment::Garment& shirt() { return pixelcloth::testing::tshirt(); }

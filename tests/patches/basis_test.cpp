@@ -222,5 +222,3 @@ TEST(PatchBasis, RejectsBadInput) {
   EXPECT_THROW(pp::rectanglePatch(0.0, 0.1, 4, 4), pc::InputError);
   EXPECT_THROW(pp::rectanglePatch(0.1, 0.1, 0, 4), pc::InputError);
 }
-
-

@@ -7,15 +7,16 @@
 #include <fstream>
 #include <set>
 
+#include "pixelcloth/garment/garment.h"
 #include "support/fixtures.h"
 #include "support/test_util.h"
-#include "pixelcloth/garment/garment.h"
 
 namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;
 namespace pg = pixelcloth::garment;
 using pixelcloth::testing::freshDir;
 using pixelcloth::testing::inputErrorOf;
+using pixelcloth::testing::smoothOffsets;
 
 namespace {
 const pixelcloth::garment::Garment& shirt() { return pixelcloth::testing::tshirt(); }
@@ -23,16 +24,6 @@ const pixelcloth::garment::Garment& shirt() { return pixelcloth::testing::tshirt
 const pp::ClothImager& shirtImager() {
   static const pp::ClothImager imager(shirt());
   return imager;
-}
-
-/// A smooth field of the rest positions (the same for both UVs of a seam vertex): #V x 3, centimetres-sized.
-Eigen::MatrixXf smoothOffsets(const pg::Garment& g) {
-  Eigen::MatrixXf x(g.mesh.numVertices(), 3);
-  for (int v = 0; v < g.mesh.numVertices(); ++v) {
-    Eigen::Vector3d p = g.mesh.V.row(v);
-    x.row(v) << 0.02 * std::sin(6 * p.x()), 0.01 * std::cos(5 * p.y()), 0.015 * std::sin(4 * p.x() + 3 * p.y());
-  }
-  return x;
 }
 
 }  // namespace

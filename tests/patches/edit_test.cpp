@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_util.h"
 #include "pixelcloth/core/image.h"
+#include "support/test_util.h"
 
 namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;

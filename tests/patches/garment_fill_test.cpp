@@ -3,10 +3,10 @@
 
 #include <gtest/gtest.h>
 
-#include "support/fixtures.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/garment/garment.h"
+#include "support/fixtures.h"
 
 namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;

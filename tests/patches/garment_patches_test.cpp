@@ -4,10 +4,10 @@
 
 #include <set>
 
-#include "support/fixtures.h"
 #include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/frame.h"
 #include "pixelcloth/patches/patch.h"
+#include "support/fixtures.h"
 
 namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;

@@ -8,10 +8,10 @@
 #include <functional>
 #include <iostream>
 
-#include "support/fixtures.h"
-#include "support/test_util.h"
 #include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/frame.h"
+#include "support/fixtures.h"
+#include "support/test_util.h"
 
 namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;

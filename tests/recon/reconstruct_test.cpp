@@ -4,10 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include <iostream>
-
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <set>
@@ -86,8 +85,7 @@ struct Dressed {
 
   Dressed() {
     dressing = pcg::dressGarment(body, pcg::bodyCage(body), garment, pcg::garmentCage(garment));
-    reconstructor =
-        std::make_unique<pr::GarmentReconstructor>(body, garment, dressing.embedding, dressing.relaxed);
+    reconstructor = std::make_unique<pr::GarmentReconstructor>(body, garment, dressing.embedding, dressing.relaxed);
     definition = pcg::defineMarkers(garment, reconstructor->cage());
   }
 
@@ -171,8 +169,9 @@ TEST(GarmentReconstructor, RefusesMarkersOfAnotherGarment) {
   const Dressed& d = dressed();
   pcg::MarkerSet markers = pcg::placeMarkers(d.definition, d.dressing.relaxed);
   markers.garment = "necktie";
-  EXPECT_NE(pixelcloth::testing::inputErrorOf([&] { d.reconstructor->reconstruct(markers, pb::Pose::identity()); })
-                .find("necktie"),
+  EXPECT_NE(pixelcloth::testing::inputErrorOf([&] {
+              d.reconstructor->reconstruct(markers, pb::Pose::identity());
+            }).find("necktie"),
             std::string::npos);
 }
 
@@ -191,8 +190,8 @@ TEST(ReconstructDataset, WritesMetricsForEveryMethodAndTheFirstMeshes) {
     for (int i : writer.pending()) {
       const pb::Pose pose = pb::randomPose(100 + i, 0.3);
       const Eigen::MatrixX3d positions = d.worn(pose, 0.002 + 0.0005 * i);
-      const pg::EmbeddedFrames frames = pg::embeddedFrames(d.body.posedVertices(pose), d.body.mesh.F,
-                                                           d.dressing.embedding);
+      const pg::EmbeddedFrames frames =
+          pg::embeddedFrames(d.body.posedVertices(pose), d.body.mesh.F, d.dressing.embedding);
       pd::Sample sample;
       sample.pose = pose.toVector();
       sample.positions = positions.cast<float>();
@@ -215,8 +214,8 @@ TEST(ReconstructDataset, WritesMetricsForEveryMethodAndTheFirstMeshes) {
   }
   EXPECT_LT(report.metrics["methods"]["spline"]["cage_cm"].get<double>(),
             report.metrics["methods"]["linear"]["cage_cm"].get<double>());
-  for (const char* file : {"metrics.json", "markers.json", "length_model.json", "sample_000000/truth.obj",
-                           "sample_000000/spline.obj"})
+  for (const char* file :
+       {"metrics.json", "markers.json", "length_model.json", "sample_000000/truth.obj", "sample_000000/spline.obj"})
     EXPECT_TRUE(fs::exists(out / file)) << file;
   EXPECT_FALSE(fs::exists(out / "sample_000001"));
   // The rebuilt mesh on disk is the one measured: its error against the truth is its method's error of that sample.

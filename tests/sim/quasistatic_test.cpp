@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "support/test_util.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/mesh.h"
+#include "support/test_util.h"
 
 namespace pixelcloth::sim {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "support/fixtures.h"
 #include "pixelcloth/cage/garment_cage.h"
+#include "support/fixtures.h"
 
 namespace pixelcloth::testing {
 

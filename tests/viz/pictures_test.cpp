@@ -1,4 +1,6 @@
 // The pictures of the stages: the pattern, text, the basis figures, the patches.
+#include "pixelcloth/viz/pictures.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,7 +17,6 @@
 #include "pixelcloth/viz/basis_figures.h"
 #include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/patch_picture.h"
-#include "pixelcloth/viz/pictures.h"
 #include "support/fixtures.h"
 #include "support/test_util.h"
 
@@ -39,17 +40,8 @@ const std::vector<pp::Patch>& shirtPatches() {
       pp::segmentPatches(shirt(), pixelcloth::cage::cutEdges(pixelcloth::cage::garmentCage(shirt())));
   return patches;
 }
-/// A smooth field of the rest positions (the same for both UVs of a seam vertex): #V x 3, centimetres-sized.
-Eigen::MatrixXf smoothOffsets(const pg::Garment& g) {
-  Eigen::MatrixXf x(g.mesh.numVertices(), 3);
-  for (int v = 0; v < g.mesh.numVertices(); ++v) {
-    Eigen::Vector3d p = g.mesh.V.row(v);
-    x.row(v) << 0.02 * std::sin(6 * p.x()), 0.01 * std::cos(5 * p.y()), 0.015 * std::sin(4 * p.x() + 3 * p.y());
-  }
-  return x;
-}
-
 using pixelcloth::testing::inputErrorOf;
+using pixelcloth::testing::smoothOffsets;
 }  // namespace
 
 TEST(Garment, RenderPatternDrawsLayoutsSideBySide) {
@@ -163,7 +155,6 @@ TEST(Dressing, AreaDistortionPictureShowsLessColourAfterRelaxation) {
   EXPECT_FALSE(inputErrorOf([&] { pv::renderAreaDistortion(pg::makeNecktie(), dressing); }).empty());
 }
 
-
 TEST(ClothImage, PreviewShowsLayersSideBySide) {
   pp::ClothImage image = pp::ClothImager(shirt()).rasterize(smoothOffsets(shirt()));
   pc::RgbImage rgb = pv::renderClothImage(image);
@@ -179,4 +170,3 @@ TEST(ClothImage, PreviewShowsLayersSideBySide) {
       coloured += !(rgb.at(x, y)[0] == 255 && rgb.at(x, y)[1] == 255 && rgb.at(x, y)[2] == 255);
   EXPECT_GT(coloured, 0.3 * 512 * 256);
 }
-

@@ -1,5 +1,4 @@
 // The appendix's basis figures: boundary data on a square patch, filled isotropically and anisotropically.
-#include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/basis_figures.h"
 
 #include <algorithm>
@@ -10,6 +9,7 @@
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/previews.h"
 #include "pixelcloth/viz/render.h"
 

@@ -1,7 +1,7 @@
 #include <Eigen/Geometry>
 
-#include "pixelcloth/viz/draw.h"
 #include "pixelcloth/cage/body_cage.h"
+#include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/previews.h"
 #include "pixelcloth/viz/render.h"
 
@@ -46,7 +46,7 @@ core::RgbImage renderCageOnMesh(const core::Mesh& mesh, const Cage& cage, int pa
         int a = c.vertices[i], b = c.vertices[(i + 1) % n];
         if (!facing(a) || !facing(b)) continue;
         viz::drawLine(picture, projection.toPixel(mesh.V.row(a).transpose()),
-                       projection.toPixel(mesh.V.row(b).transpose()), kindColor(c.kind), 2.5);
+                      projection.toPixel(mesh.V.row(b).transpose()), kindColor(c.kind), 2.5);
       }
     }
     for (const CageNode& node : cage.nodes) {

@@ -80,9 +80,9 @@ void simulatedDataset(Report& report, const body::Body& body, std::uint64_t seed
   }
   writePng(report.folder() / folder / "contact_sheet.png", contactSheet(row, 3));
   report.json()[folder] = {{"samples", dataset.rows()},
-                    {"seconds", made.seconds},
-                    {"check", checked.summary()},
-                    {"stats", dataset.info.stats.toJson()}};
+                           {"seconds", made.seconds},
+                           {"check", checked.summary()},
+                           {"stats", dataset.info.stats.toJson()}};
 }
 }  // namespace
 
@@ -93,16 +93,16 @@ body::Body demoBody(Report& report) {
     saveBody(report.folder() / "body", body, "built-in mannequin (demo)");
     writePng(report.folder() / "body" / "body.png", renderBodySheet(body));
     report.json()["body"] = {{"vertices", body.mesh.numVertices()},
-                      {"faces", body.mesh.numFaces()},
-                      {"joints", body.skeleton.numJoints()},
-                      {"height_m", body.mesh.V.col(1).maxCoeff()},
-                      {"volume_m3", enclosedVolume(body.mesh.V, body.mesh.F)}};
+                             {"faces", body.mesh.numFaces()},
+                             {"joints", body.skeleton.numJoints()},
+                             {"height_m", body.mesh.V.col(1).maxCoeff()},
+                             {"volume_m3", enclosedVolume(body.mesh.V, body.mesh.F)}};
   });
   report.section("Body",
-          "The built-in mannequin (" + std::to_string(body.mesh.numVertices()) +
-              " vertices, closed and manifold): shaded with its skeleton; bone-heat skin weights (a colour "
-              "per joint); collision parts (left arm red, right arm blue, torso grey, overlaps purple); side.",
-          {"body/body.png"});
+                 "The built-in mannequin (" + std::to_string(body.mesh.numVertices()) +
+                     " vertices, closed and manifold): shaded with its skeleton; bone-heat skin weights (a colour "
+                     "per joint); collision parts (left arm red, right arm blue, torso grey, overlaps purple); side.",
+                 {"body/body.png"});
 
   return body;
 }
@@ -115,11 +115,10 @@ void demoBodyCage(Report& report, const body::Body& body) {
     report.json()["body_cage"] = {{"curves", bodyCage.curves.size()}, {"nodes", bodyCage.nodes.size()}};
   });
   report.section("Body cage",
-          "The cage on the mannequin, where the T-shirt's seams and loops will sit: chest, waist, hem, "
-          "bicep and sleeve-hem loops (red / black), centre lines (blue), side, shoulder and armhole "
-          "lines (green); yellow dots are junctions, named like the shirt's.",
-          {"body/cage.png"});
-
+                 "The cage on the mannequin, where the T-shirt's seams and loops will sit: chest, waist, hem, "
+                 "bicep and sleeve-hem loops (red / black), centre lines (blue), side, shoulder and armhole "
+                 "lines (green); yellow dots are junctions, named like the shirt's.",
+                 {"body/cage.png"});
 }
 
 void demoShapes(Report& report, const body::Body& body) {
@@ -134,15 +133,15 @@ void demoShapes(Report& report, const body::Body& body) {
       Body shaped = shape == 0.0 ? body : makeMannequin(options);
       view.bounds = Eigen::AlignedBox3d(Eigen::Vector3d(-0.95, 0.7, -0.3), Eigen::Vector3d(0.95, 1.8, 0.3));
       pictures.push_back(renderPosedBody(shaped, Pose::identity(), view, false));
-      report.json()["shapes"].push_back({{"shape", shape}, {"volume_m3", enclosedVolume(shaped.mesh.V, shaped.mesh.F)}});
+      report.json()["shapes"].push_back(
+          {{"shape", shape}, {"volume_m3", enclosedVolume(shaped.mesh.V, shaped.mesh.F)}});
     }
     writePng(report.folder() / "shapes.png", contactSheet(pictures, 3));
   });
   report.section("Body shapes",
-          "The shape parameter scales girth (-1 thinner, 0 default, 2 thicker), as the paper's "
-          "intentionally modified body shapes.",
-          {"shapes.png"});
-
+                 "The shape parameter scales girth (-1 thinner, 0 default, 2 thicker), as the paper's "
+                 "intentionally modified body shapes.",
+                 {"shapes.png"});
 }
 
 void demoSkinningArtifacts(Report& report, const body::Body& body) {
@@ -160,10 +159,9 @@ void demoSkinningArtifacts(Report& report, const body::Body& body) {
     writePng(report.folder() / "skinning_artifacts.png", contactSheet(pictures, 3));
   });
   report.section("Skinning artifacts",
-          "One pose with the bone-heat weights, then with half of each upper arm's weight moved "
-          "to the torso, then to the torso and the opposite arm (the paper's experiment).",
-          {"skinning_artifacts.png"});
-
+                 "One pose with the bone-heat weights, then with half of each upper arm's weight moved "
+                 "to the torso, then to the torso and the opposite arm (the paper's experiment).",
+                 {"skinning_artifacts.png"});
 }
 
 void demoPoses(Report& report, const body::Body& body, const DemoOptions& demo) {
@@ -174,14 +172,14 @@ void demoPoses(Report& report, const body::Body& body, const DemoOptions& demo) 
     std::vector<Pose> poses = sampler.sample(demo.poses);
     writePosedBodies(report.folder() / "poses", body, poses, {{"seed", demo.seed}, {"sampler", "appendix"}});
     report.json()["poses"] = {{"kept", sampler.stats().accepted},
-                       {"rejected_arm_inside_torso", sampler.stats().rejectedArmInsideTorso}};
+                              {"rejected_arm_inside_torso", sampler.stats().rejectedArmInsideTorso}};
   });
-  report.section("Posed bodies",
-          "Poses from the paper's sampler (half-normal mixtures on the centre line; uniform azimuth, "
-          "sine-altitude and twist for shoulders and arms, within the AAOS limits; poses with an arm inside the torso "
-          "rejected), skinned by linear blend skinning; the skeleton is drawn over each.",
-          {"poses/posed.png"});
-
+  report.section(
+      "Posed bodies",
+      "Poses from the paper's sampler (half-normal mixtures on the centre line; uniform azimuth, "
+      "sine-altitude and twist for shoulders and arms, within the AAOS limits; poses with an arm inside the torso "
+      "rejected), skinned by linear blend skinning; the skeleton is drawn over each.",
+      {"poses/posed.png"});
 }
 
 void demoBodyImport(Report& report, const body::Body& body) {
@@ -208,10 +206,9 @@ void demoBodyImport(Report& report, const body::Body& body) {
         {"mean_vertex_distance_to_original_mm", 1000.0 * (imported.mesh.V - body.mesh.V).rowwise().norm().mean()}};
   });
   report.section("Body import",
-          "An A-posed copy of the mannequin written as OBJ + joints JSON, imported back: weights "
-          "recomputed, arms rotated into the T-pose (left: input; right: imported body).",
-          {"import/import.png"});
-
+                 "An A-posed copy of the mannequin written as OBJ + joints JSON, imported back: weights "
+                 "recomputed, arms rotated into the T-pose (left: input; right: imported body).",
+                 {"import/import.png"});
 }
 
 void demoGarments(Report& report, const body::Body& body) {
@@ -225,18 +222,17 @@ void demoGarments(Report& report, const body::Body& body) {
     writePng(report.folder() / "necktie" / "pattern.png", renderPattern(tie));
     writePng(report.folder() / "necktie" / "garment.png", renderGarmentOnBody(tie, &body));
     report.json()["tshirt"] = {{"summary", shirt.summary()},
-                        {"meshing", shirt.meshing.summary(shirt.mesh.numVertices())},
-                        {"length_m", shirt.length()}};
+                               {"meshing", shirt.meshing.summary(shirt.mesh.numVertices())},
+                               {"length_m", shirt.length()}};
     report.json()["necktie"] = {{"summary", tie.summary()}, {"meshing", tie.meshing.summary(tie.mesh.numVertices())}};
   });
   report.section("T-shirt pattern",
-          "Front and back layouts (front, back, sleeve halves), triangulated by CGAL's constrained "
-          "Delaunay mesher; seams in matching colours on both layouts, openings dark. " +
-              report.json()["tshirt"]["summary"].get<std::string>(),
-          {"tshirt/pattern.png", "tshirt/garment.png"});
+                 "Front and back layouts (front, back, sleeve halves), triangulated by CGAL's constrained "
+                 "Delaunay mesher; seams in matching colours on both layouts, openings dark. " +
+                     report.json()["tshirt"]["summary"].get<std::string>(),
+                 {"tshirt/pattern.png", "tshirt/garment.png"});
   report.section("Necktie pattern", report.json()["necktie"]["summary"].get<std::string>(),
-          {"necktie/pattern.png", "necktie/garment.png"});
-
+                 {"necktie/pattern.png", "necktie/garment.png"});
 }
 
 void demoCageAndPatches(Report& report) {
@@ -245,21 +241,19 @@ void demoCageAndPatches(Report& report) {
     writeCageFolder(makeNecktie(), report.folder() / "necktie");
   });
   report.section("Cage and patches",
-          "Each garment's cage: seams (dark red), body loops (blue), centre lines (green), "
-          "openings (black) and side-panel splits (orange); the T-shirt splits into 14 patches per "
-          "side, each within 128 px of its side's 512 x 512 image. Lists in tshirt/patches.json.",
-          {"tshirt/cage.png", "necktie/cage.png"});
-
+                 "Each garment's cage: seams (dark red), body loops (blue), centre lines (green), "
+                 "openings (black) and side-panel splits (orange); the T-shirt splits into 14 patches per "
+                 "side, each within 128 px of its side's 512 x 512 image. Lists in tshirt/patches.json.",
+                 {"tshirt/cage.png", "necktie/cage.png"});
 }
 
 void demoBases(Report& report) {
   report.step("patch bases: the appendix's figures", [&] { writeBasisFigures(report.folder() / "bases"); });
   report.section("Patch bases",
-          "Harmonic (left pair) and anisotropic (right pair, 30 degrees, ratio 0.1) fills of a 20 cm "
-          "square patch from four boundary shapes: one bump, two bumps, a sine wave, an S-shaped "
-          "boundary; height maps and shaded surfaces.",
-          {"bases/bases.png"});
-
+                 "Harmonic (left pair) and anisotropic (right pair, 30 degrees, ratio 0.1) fills of a 20 cm "
+                 "square patch from four boundary shapes: one bump, two bumps, a sine wave, an S-shaped "
+                 "boundary; height maps and shaded surfaces.",
+                 {"bases/bases.png"});
 }
 
 void demoClothImages(Report& report) {
@@ -290,15 +284,14 @@ void demoClothImages(Report& report) {
              contactSheet({renderClothImage(image, preview), renderClothImage(edited, preview)}, 1));
     Eigen::MatrixXf back = imager.sample(image);
     report.json()["cloth_image"] = {{"size", {image.width, image.height}},
-                             {"round_trip_max_error_mm", 1e3 * (back - offsets).cwiseAbs().maxCoeff()}};
+                                    {"round_trip_max_error_mm", 1e3 * (back - offsets).cwiseAbs().maxCoeff()}};
   });
   report.section("Cloth images",
-          "Offsets set on the T-shirt's cage only (a smooth wave), patch interiors filled by their "
-          "bases, rasterised to a 256 x 256 cloth image per side (RGB = du, dv, dn; padding dimmer). "
-          "Below: the same image edited with a dn brush on the chest and a shift in du. EXR files in "
-          "images/.",
-          {"images/filled_and_edited.png"});
-
+                 "Offsets set on the T-shirt's cage only (a smooth wave), patch interiors filled by their "
+                 "bases, rasterised to a 256 x 256 cloth image per side (RGB = du, dv, dn; padding dimmer). "
+                 "Below: the same image edited with a dn brush on the chest and a shift in du. EXR files in "
+                 "images/.",
+                 {"images/filled_and_edited.png"});
 }
 
 void demoDressing(Report& report, const body::Body& body) {
@@ -310,28 +303,30 @@ void demoDressing(Report& report, const body::Body& body) {
       report.json()["dressing"][garment.name] = dressing.summary();
     }
   });
-  report.section("Dressing",
-          "The T-shirt's cage morphed onto the body cage, the rest carried by a Poisson solve, pushed out of the "
-          "body and relaxed by edge-length equalisation on it: " +
-              report.json()["dressing"]["tshirt"].get<std::string>() +
-              ". Area distortion in pattern space before and after relaxation (red stretch, blue compression), "
-              "and the dressed shirt. The necktie keeps its rest placement.",
-          {"dressing/tshirt/area_distortion.png", "dressing/tshirt/dressed.png"});
+  report.section(
+      "Dressing",
+      "The T-shirt's cage morphed onto the body cage, the rest carried by a Poisson solve, pushed out of the "
+      "body and relaxed by edge-length equalisation on it: " +
+          report.json()["dressing"]["tshirt"].get<std::string>() +
+          ". Area distortion in pattern space before and after relaxation (red stretch, blue compression), "
+          "and the dressed shirt. The necktie keeps its rest placement.",
+      {"dressing/tshirt/area_distortion.png", "dressing/tshirt/dressed.png"});
 
   // A small simulated dataset per garment, checked, with a contact sheet: posed body, draped garment, cloth image.
 }
 
 void demoTShirtDataset(Report& report, const body::Body& body, const DemoOptions& demo) {
   report.step("datasets: simulated T-shirt samples, checked; contact sheet",
-            [&] { simulatedDataset(report, body, demo.seed, "tshirt", demo.tshirtSamples); });
-  report.section("Simulated T-shirt dataset",
-          "pixelcloth generate: poses from the appendix sampler, the dressed shirt settled under gravity, then "
-          "walked to each pose in steps of at most 25 degrees per joint, the cloth carried with the body and relaxed "
-          "against it (with friction); checked by dataset check (" +
-              report.json()["dataset_tshirt"]["check"].get<std::string>() +
-              "); solver statistics and rejections: " + report.json()["dataset_tshirt"]["stats"].dump() +
-              ". Each row: posed body, simulated shirt (front, three-quarter, back), its cloth image.",
-          {"dataset_tshirt/contact_sheet.png"});
+              [&] { simulatedDataset(report, body, demo.seed, "tshirt", demo.tshirtSamples); });
+  report.section(
+      "Simulated T-shirt dataset",
+      "pixelcloth generate: poses from the appendix sampler, the dressed shirt settled under gravity, then "
+      "walked to each pose in steps of at most 25 degrees per joint, the cloth carried with the body and relaxed "
+      "against it (with friction); checked by dataset check (" +
+          report.json()["dataset_tshirt"]["check"].get<std::string>() +
+          "); solver statistics and rejections: " + report.json()["dataset_tshirt"]["stats"].dump() +
+          ". Each row: posed body, simulated shirt (front, three-quarter, back), its cloth image.",
+      {"dataset_tshirt/contact_sheet.png"});
 }
 
 void demoReconstruction(Report& report, const body::Body& body) {
@@ -343,10 +338,12 @@ void demoReconstruction(Report& report, const body::Body& body) {
     options.split = dataset.rowsOf(data::Split::Test).empty() ? "all" : "test";
     options.meshes = 2;
     const fs::path folder = report.folder() / "reconstruction";
-    const recon::DatasetReconstructionReport rec = recon::reconstructDataset(report.folder() / "dataset_tshirt", folder, options);
+    const recon::DatasetReconstructionReport rec =
+        recon::reconstructDataset(report.folder() / "dataset_tshirt", folder, options);
     std::vector<int> shown;
     for (int r = 0; r < dataset.rows() && static_cast<int>(shown.size()) < 2; ++r)
-      if (options.split == "all" || dataset.split[r] == static_cast<std::uint8_t>(data::Split::Test)) shown.push_back(r);
+      if (options.split == "all" || dataset.split[r] == static_cast<std::uint8_t>(data::Split::Test))
+        shown.push_back(r);
     const Garment shirt = data::datasetGarment(dataset.info);
     writePng(folder / "error_maps.png", renderReconstructionErrors(shirt, rec));
     std::vector<RgbImage> rows;
@@ -393,14 +390,15 @@ void demoReconstruction(Report& report, const body::Body& body) {
 }
 
 void demoNecktieDataset(Report& report, const body::Body& body, const DemoOptions& demo) {
-  report.step("datasets: simulated necktie samples, checked; contact sheet", [&] { simulatedDataset(report, body, demo.seed, "necktie", 6); });
-  report.section("Simulated necktie dataset",
-          "pixelcloth generate --garment necktie: poses from the appendix sampler (centre line only), quasistatic "
-          "drape with the knot held at the collar; checked by dataset check (" +
-              report.json()["dataset_necktie"]["check"].get<std::string>() +
-              "). Each row: posed body, simulated necktie, its cloth image (du dv dn).",
-          {"dataset_necktie/contact_sheet.png"});
-
+  report.step("datasets: simulated necktie samples, checked; contact sheet",
+              [&] { simulatedDataset(report, body, demo.seed, "necktie", 6); });
+  report.section(
+      "Simulated necktie dataset",
+      "pixelcloth generate --garment necktie: poses from the appendix sampler (centre line only), quasistatic "
+      "drape with the knot held at the collar; checked by dataset check (" +
+          report.json()["dataset_necktie"]["check"].get<std::string>() +
+          "). Each row: posed body, simulated necktie, its cloth image (du dv dn).",
+      {"dataset_necktie/contact_sheet.png"});
 }
 
 void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions& demo) {
@@ -431,12 +429,13 @@ void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions&
       }
     }
     writePng(report.folder() / "poses" / "joint_histograms.png", renderJointHistograms(drawn, kept));
-    report.json()["pose_sampling"] = {{"drawn", drawn.size()},
-                               {"kept", kept.size()},
-                               {"rejected", tally.rejected},
-                               {"rejection_rate", 1.0 - static_cast<double>(kept.size()) / drawn.size()},
-                               {"mean_seconds_per_simulation", survivors.empty() ? 0.0 : seconds / survivors.size()},
-                               {"max_penetration_mm_kept", 1e3 * tally.maxPenetration}};
+    report.json()["pose_sampling"] = {
+        {"drawn", drawn.size()},
+        {"kept", kept.size()},
+        {"rejected", tally.rejected},
+        {"rejection_rate", 1.0 - static_cast<double>(kept.size()) / drawn.size()},
+        {"mean_seconds_per_simulation", survivors.empty() ? 0.0 : seconds / survivors.size()},
+        {"max_penetration_mm_kept", 1e3 * tally.maxPenetration}};
   });
   {
     std::ostringstream text;
@@ -447,13 +446,14 @@ void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions&
          << poses["mean_seconds_per_simulation"].get<double>()
          << " s per simulation on one core; deepest kept vertex inside its body part "
          << poses["max_penetration_mm_kept"].get<double>() << " mm";
-    report.section("Pose sampling and simulation filtering",
-            std::to_string(demo.filterPoses) +
-                " poses from the appendix sampler (grey), each pruned when an arm falls inside the torso or else "
-                "simulated on the T-shirt and kept only when it passes the paper's test (no triangle shrinks by more "
-                "than 75% or grows by more than 100%) and no vertex ends more than 2 mm inside its body part (blue): " +
-                text.str() + ".",
-            {"poses/joint_histograms.png"});
+    report.section(
+        "Pose sampling and simulation filtering",
+        std::to_string(demo.filterPoses) +
+            " poses from the appendix sampler (grey), each pruned when an arm falls inside the torso or else "
+            "simulated on the T-shirt and kept only when it passes the paper's test (no triangle shrinks by more "
+            "than 75% or grows by more than 100%) and no vertex ends more than 2 mm inside its body part (blue): " +
+            text.str() + ".",
+        {"poses/joint_histograms.png"});
   }
 }
 

@@ -1,10 +1,10 @@
 // Drawing on RgbImage: triangles, anti-aliased lines, discs, a 5x7 bitmap font, a categorical palette.
 #include "pixelcloth/viz/draw.h"
 
-#include "pixelcloth/core/error.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "pixelcloth/core/error.h"
 
 namespace pixelcloth::viz {
 

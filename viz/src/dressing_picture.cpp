@@ -6,9 +6,9 @@
 #include <unordered_map>
 #include <vector>
 
-#include "pixelcloth/viz/draw.h"
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/render.h"
 
 namespace pixelcloth::viz {
@@ -98,7 +98,7 @@ core::RgbImage renderAreaDistortion(const garment::Garment& garment, const Dress
       const double ratio = (*ratios[panel])[f];
       logs.push_back(std::log2(std::max(ratio, 1e-12)));
       viz::fillTriangle(image, pixel(l, mesh.FUV(f, 0)), pixel(l, mesh.FUV(f, 1)), pixel(l, mesh.FUV(f, 2)),
-                         distortionColor(ratio));
+                        distortionColor(ratio));
     }
     for (int f = 0; f < mesh.numFaces(); ++f) {
       const int l = garment.faceLayout[f];
@@ -106,7 +106,7 @@ core::RgbImage renderAreaDistortion(const garment::Garment& garment, const Dress
         const int j = (k + 1) % 3;
         if (edgeUses[l][key(mesh.F(f, k), mesh.F(f, j))] == 1)
           viz::drawLine(image, pixel(l, mesh.FUV(f, k)), pixel(l, mesh.FUV(f, j)), {60, 60, 60},
-                         std::max(1.0, ppm / 500));
+                        std::max(1.0, ppm / 500));
       }
     }
     const Eigen::Vector2i extent = viz::textExtent(titles[panel], 2 * textScale);
@@ -120,7 +120,7 @@ core::RgbImage renderAreaDistortion(const garment::Garment& garment, const Dress
       const Eigen::Vector2i labelExtent = viz::textExtent(garment.layouts[l], textScale);
       const int centre = x0 + static_cast<int>((left[l] + 0.5 * bounds[l].sizes().x()) * ppm);
       viz::drawText(image, {centre - labelExtent.x() / 2, titleH + (labelH - labelExtent.y()) / 2}, garment.layouts[l],
-                     {70, 70, 70}, textScale);
+                    {70, 70, 70}, textScale);
     }
   }
 

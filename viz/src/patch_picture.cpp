@@ -1,5 +1,4 @@
 // Pictures of patches and the cage curves between them.
-#include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/patch_picture.h"
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/patches/frame.h"
+#include "pixelcloth/viz/draw.h"
 
 namespace pixelcloth::viz {
 
@@ -49,7 +49,7 @@ core::RgbImage renderPatches(const garment::Garment& garment, const std::vector<
   for (int l = 0; l < numLayouts; ++l) {
     const Eigen::Vector2i extent = viz::textExtent(garment.layouts[l], 2 * textScale);
     viz::drawText(image, {l * (size + gap) + (size - extent.x()) / 2, (title - extent.y()) / 2}, garment.layouts[l],
-                   {0, 0, 0}, 2 * textScale);
+                  {0, 0, 0}, 2 * textScale);
   }
 
   const core::Mesh& mesh = garment.mesh;
@@ -94,9 +94,9 @@ core::RgbImage renderPatches(const garment::Garment& garment, const std::vector<
     const std::string label = std::to_string(patch.id);
     const Eigen::Vector2i extent = viz::textExtent(label, textScale);
     viz::drawText(image,
-                   {static_cast<int>(std::lround(centroid.x())) - extent.x() / 2,
-                    static_cast<int>(std::lround(centroid.y())) - extent.y() / 2},
-                   label, {0, 0, 0}, textScale);
+                  {static_cast<int>(std::lround(centroid.x())) - extent.x() / 2,
+                   static_cast<int>(std::lround(centroid.y())) - extent.y() / 2},
+                  label, {0, 0, 0}, textScale);
   }
   return image;
 }

@@ -1,10 +1,10 @@
-#include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/pose_figures.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/viz/draw.h"
 
 namespace pixelcloth::viz {
 

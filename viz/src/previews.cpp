@@ -1,7 +1,8 @@
-#include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/previews.h"
 
 #include <algorithm>
+
+#include "pixelcloth/viz/draw.h"
 
 namespace pixelcloth::viz {
 

@@ -1,4 +1,3 @@
-#include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/render.h"
 
 #include <algorithm>
@@ -7,6 +6,7 @@
 
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/mesh.h"
+#include "pixelcloth/viz/draw.h"
 
 namespace pixelcloth::viz {
 

@@ -61,7 +61,6 @@ void writeCageFolder(const garment::Garment& garment, const std::filesystem::pat
                            << size << " -> " << out.string() << "/{cage.json, patches.json, cage.png}");
 }
 
-
 void writeDressingFolder(const body::Body& body, const garment::Garment& garment, const cage::Dressing& dressing,
                          const std::filesystem::path& out) {
   PIXELCLOTH_CHECK(
@@ -95,6 +94,5 @@ void writeDressingFolder(const body::Body& body, const garment::Garment& garment
                                     {"vertices_per_part", parts}});
   PIXELCLOTH_INFO("dress: -> " << out.string() << "/{dressed.obj, area_distortion.png, dressed.png, dressing.json}");
 }
-
 
 }  // namespace pixelcloth::viz

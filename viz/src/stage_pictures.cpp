@@ -5,13 +5,13 @@
 #include <iomanip>
 #include <sstream>
 
+#include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
 #include "pixelcloth/core/progress.h"
-#include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/patches/frame.h"
 #include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/pictures.h"
@@ -102,7 +102,6 @@ core::RgbImage renderClothImage(const ClothImage& image, const PreviewOptions& o
   return rgb;
 }
 
-
 core::RgbImage renderPatternValues(const garment::Garment& garment, const Eigen::VectorXd& values, double maxValue,
                                    const std::string& title, int size) {
   PIXELCLOTH_CHECK(values.size() == garment.mesh.numVertices(),
@@ -125,16 +124,16 @@ core::RgbImage renderPatternValues(const garment::Garment& garment, const Eigen:
       }
       const Eigen::Vector3d c = viz::colorRamp(std::clamp(mean / scale, 0.0, 1.0));
       viz::fillTriangle(image, corner[0], corner[1], corner[2],
-                         {static_cast<std::uint8_t>(255 * c.x()), static_cast<std::uint8_t>(255 * c.y()),
-                          static_cast<std::uint8_t>(255 * c.z())});
+                        {static_cast<std::uint8_t>(255 * c.x()), static_cast<std::uint8_t>(255 * c.y()),
+                         static_cast<std::uint8_t>(255 * c.z())});
     }
     viz::drawText(image, {x0 + 6, titleHeight + size - 14}, garment.layouts[l], {90, 90, 90}, 1);
   }
   return image;
 }
 
-
-core::RgbImage renderReconstructionErrors(const garment::Garment& garment, const recon::DatasetReconstructionReport& report) {
+core::RgbImage renderReconstructionErrors(const garment::Garment& garment,
+                                          const recon::DatasetReconstructionReport& report) {
   const std::vector<recon::ReconstructionMethod> methods = recon::allReconstructionMethods();
   const int M = static_cast<int>(methods.size());
   PIXELCLOTH_CHECK(static_cast<int>(report.meanVertexError.size()) == M,

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "pixelcloth/core/mesh.h"
 #include "pixelcloth/body/skeleton.h"
+#include "pixelcloth/core/mesh.h"
 
 namespace pixelcloth::body {
 
@@ -21,7 +21,7 @@ struct BodyPart {
 
 /// A skinned body: closed manifold mesh in the rest T-pose, skeleton, skin weights, collision parts.
 struct Body {
-  core::Mesh mesh;                    ///< rest T-pose, metres
+  core::Mesh mesh;              ///< rest T-pose, metres
   Skeleton skeleton;            ///< rest joints
   Eigen::MatrixXd weights;      ///< #V x #J skin weights, non-negative, rows sum to 1
   std::vector<BodyPart> parts;  ///< left_arm, right_arm, torso

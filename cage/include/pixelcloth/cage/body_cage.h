@@ -1,7 +1,7 @@
 #pragma once
 
-#include "pixelcloth/cage/cage.h"
 #include "pixelcloth/body/body.h"
+#include "pixelcloth/cage/cage.h"
 #include "pixelcloth/core/image.h"
 
 namespace pixelcloth::cage {

@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "pixelcloth/cage/cage.h"
 #include "pixelcloth/body/body.h"
+#include "pixelcloth/cage/cage.h"
+#include "pixelcloth/core/image.h"
 #include "pixelcloth/garment/embedding.h"
 #include "pixelcloth/garment/garment.h"
-#include "pixelcloth/core/image.h"
 
 namespace pixelcloth::cage {
 
@@ -30,9 +30,9 @@ struct DressingOptions {
 
 /// A garment dressed on a body in its rest pose.
 struct Dressing {
-  Eigen::MatrixX3d morphed;   ///< #V x 3: cage morphed onto the body cage, carried inside by a Poisson solve
-  Eigen::MatrixX3d pushed;    ///< #V x 3: `morphed` with vertices inside the body moved out to the surface
-  Eigen::MatrixX3d relaxed;   ///< #V x 3: after edge-length equalisation on the body: the dressed garment
+  Eigen::MatrixX3d morphed;      ///< #V x 3: cage morphed onto the body cage, carried inside by a Poisson solve
+  Eigen::MatrixX3d pushed;       ///< #V x 3: `morphed` with vertices inside the body moved out to the surface
+  Eigen::MatrixX3d relaxed;      ///< #V x 3: after edge-length equalisation on the body: the dressed garment
   garment::Embedding embedding;  ///< every cloth vertex of `relaxed`, embedded in a body triangle
   /// #V: index into Body::parts of the part each cloth vertex collides with: among the parts that hold its embedding
   /// triangle, the arm part of the sleeve's side for a vertex of a sleeve panel ("left_sleeve_*" -> "left_arm"),

@@ -40,7 +40,8 @@ class EnumNames {
   /// "a, b or c".
   std::string list() const {
     std::string out;
-    for (std::size_t i = 0; i < N; ++i) out += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + std::string(table_[i].second);
+    for (std::size_t i = 0; i < N; ++i)
+      out += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + std::string(table_[i].second);
     return out;
   }
 

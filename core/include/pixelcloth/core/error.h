@@ -55,13 +55,13 @@ namespace detail {
 /// Unconditional failure with the same message style as PIXELCLOTH_CHECK.
 #define PIXELCLOTH_FAIL(message) PIXELCLOTH_CHECK(false, message)
 
-/// Checks an invariant of pixelcloth's own code (not of user input) and throws `pixelcloth::core::InternalError` when it
-/// fails. Stays on in release builds. The message is streamed, as in PIXELCLOTH_CHECK.
-#define PIXELCLOTH_ASSERT(condition, message)                                                             \
-  do {                                                                                                    \
-    if (!(condition)) {                                                                                   \
-      std::ostringstream pixelcloth_assert_stream_;                                                       \
-      pixelcloth_assert_stream_ << "'" #condition "' failed: " << message;                                \
+/// Checks an invariant of pixelcloth's own code (not of user input) and throws `pixelcloth::core::InternalError` when
+/// it fails. Stays on in release builds. The message is streamed, as in PIXELCLOTH_CHECK.
+#define PIXELCLOTH_ASSERT(condition, message)                                                              \
+  do {                                                                                                     \
+    if (!(condition)) {                                                                                    \
+      std::ostringstream pixelcloth_assert_stream_;                                                        \
+      pixelcloth_assert_stream_ << "'" #condition "' failed: " << message;                                 \
       ::pixelcloth::core::detail::throwInternalError(pixelcloth_assert_stream_.str(), __FILE__, __LINE__); \
-    }                                                                                                     \
+    }                                                                                                      \
   } while (false)

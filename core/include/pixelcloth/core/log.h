@@ -29,11 +29,11 @@ void logLine(LogLevel level, const std::string& line);
 
 /// Streams a warning to stderr, prefixed "warning: ": for what loses or drops data (samples not saved, attributes a
 /// format cannot hold). Shown unless the level is Quiet, so `--quiet` keeps it.
-#define PIXELCLOTH_WARN(message)                                                                           \
-  do {                                                                                                     \
-    if (::pixelcloth::core::logLevel() >= ::pixelcloth::core::LogLevel::Warning) {                         \
-      std::ostringstream pixelcloth_log_stream_;                                                           \
-      pixelcloth_log_stream_ << "warning: " << message;                                                    \
-      ::pixelcloth::core::logLine(::pixelcloth::core::LogLevel::Warning, pixelcloth_log_stream_.str());    \
-    }                                                                                                      \
+#define PIXELCLOTH_WARN(message)                                                                        \
+  do {                                                                                                  \
+    if (::pixelcloth::core::logLevel() >= ::pixelcloth::core::LogLevel::Warning) {                      \
+      std::ostringstream pixelcloth_log_stream_;                                                        \
+      pixelcloth_log_stream_ << "warning: " << message;                                                 \
+      ::pixelcloth::core::logLine(::pixelcloth::core::LogLevel::Warning, pixelcloth_log_stream_.str()); \
+    }                                                                                                   \
   } while (false)

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "pixelcloth/body/body.h"
-#include "pixelcloth/garment/embedding.h"
-#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/npy.h"
 #include "pixelcloth/data/sample.h"
+#include "pixelcloth/garment/embedding.h"
+#include "pixelcloth/garment/garment.h"
 
 namespace pixelcloth::data {
 
@@ -121,8 +121,8 @@ struct DatasetWriterOptions {
 /// resumed when its settings are identical; a folder whose settings differ is refused with `InputError` naming the
 /// field, and so is a non-empty folder that is not a dataset. A finished folder with identical settings is accepted
 /// with nothing pending (finish() then does nothing). The folder gets body/ (body::saveBody), garment/
-/// (garment::saveGarment), rest_positions.npy (#V x 3 float64) and the embedding arrays (garment::saveEmbedding) at once;
-/// on resume they are rewritten and must come out byte-identical to what the partial folder holds.
+/// (garment::saveGarment), rest_positions.npy (#V x 3 float64) and the embedding arrays (garment::saveEmbedding) at
+/// once; on resume they are rewritten and must come out byte-identical to what the partial folder holds.
 ///
 /// Samples go to partial/chunk_NNNNNN.bin files (each written atomically, with a CRC); finish() assembles
 /// poses.npy, positions.npy, offsets.npy, split.npy and manifest.json (manifest last) and removes partial/.
@@ -131,8 +131,8 @@ class DatasetWriter {
  public:
   /// `restPositions` #V x 3 metres (the dressed garment in the rest pose); `embedding` of its #V cloth pixels.
   DatasetWriter(const std::filesystem::path& folder, const DatasetSettings& settings, const body::Body& body,
-                const garment::Garment& garment, const Eigen::MatrixX3d& restPositions, const garment::Embedding& embedding,
-                const DatasetWriterOptions& options = {});
+                const garment::Garment& garment, const Eigen::MatrixX3d& restPositions,
+                const garment::Embedding& embedding, const DatasetWriterOptions& options = {});
   /// Writes the samples added since the last chunk (a partial chunk) so they survive; never throws.
   ~DatasetWriter();
   DatasetWriter(const DatasetWriter&) = delete;

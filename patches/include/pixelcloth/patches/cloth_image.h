@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "pixelcloth/core/exr_io.h"
-#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/image.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/frame.h"
 #include "pixelcloth/patches/patch.h"
 #include "pixelcloth/patches/raster.h"

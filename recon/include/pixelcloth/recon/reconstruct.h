@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "pixelcloth/body/body.h"
 #include "pixelcloth/cage/length_model.h"
 #include "pixelcloth/cage/markers.h"
 #include "pixelcloth/cage/spline_solver.h"
-#include "pixelcloth/body/body.h"
+#include "pixelcloth/core/image.h"
 #include "pixelcloth/garment/embedding.h"
 #include "pixelcloth/garment/garment.h"
-#include "pixelcloth/core/image.h"
 #include "pixelcloth/patches/basis.h"
 
 namespace pixelcloth::recon {
@@ -147,7 +147,8 @@ struct DatasetReconstructionReport {
 /// Reconstructs every sample of one split of a finished dataset folder from markers taken from its ground truth, by
 /// every method, and writes into `out`: metrics.json, markers.json (the marker definition), length_model.json (when one
 /// is used) and OBJs of the first few samples (sample_NNNNNN/truth.obj, <method>.obj); the error maps are viz's
-/// (viz::renderReconstructionErrors of the report). Progress on stderr unless quiet. Throws InputError for a bad folder, an empty split or options.
+/// (viz::renderReconstructionErrors of the report). Progress on stderr unless quiet. Throws InputError for a bad
+/// folder, an empty split or options.
 DatasetReconstructionReport reconstructDataset(const std::filesystem::path& dataset, const std::filesystem::path& out,
                                                const DatasetReconstructionOptions& options = {});
 

@@ -4,12 +4,12 @@
 #include <memory>
 #include <vector>
 
-#include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/body/body.h"
-#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/body/skeleton.h"
-#include "pixelcloth/sim/quasistatic.h"
+#include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/data/sample.h"
+#include "pixelcloth/garment/garment.h"
+#include "pixelcloth/sim/quasistatic.h"
 
 namespace pixelcloth::sim {
 
@@ -70,7 +70,7 @@ class GarmentSimulator {
   std::unique_ptr<QuasistaticSolver> solver_;
   std::vector<std::vector<int>> partVertices_;  ///< per body part, its body vertices (collider vertex order)
   Eigen::MatrixX3d restOffsets_;                ///< offsets of the pinned vertices in the rest pose
-  garment::Embedding pinEmbedding_;                ///< the embedding of the pinned vertices alone
+  garment::Embedding pinEmbedding_;             ///< the embedding of the pinned vertices alone
   Eigen::MatrixX3d rest_;
   Eigen::MatrixX3d posedBody_;
   data::SampleStats restStats_;

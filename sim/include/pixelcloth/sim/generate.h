@@ -52,7 +52,8 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
 /// core), with progress on stderr unless `quiet`: each pose's statistics, rejection included, in the order given.
 /// No pose is redrawn: for rejection rates over a fixed set of poses.
 std::vector<data::SampleStats> simulatePoses(const body::Body& body, const garment::Garment& garment,
-                                       const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
-                                       const SimulationOptions& options = {}, int threads = 0, bool quiet = false);
+                                             const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
+                                             const SimulationOptions& options = {}, int threads = 0,
+                                             bool quiet = false);
 
 }  // namespace pixelcloth::sim

@@ -43,7 +43,7 @@ struct BasisFigureOptions {
 struct BasisFigure {
   BoundaryShape shape = BoundaryShape::OneBump;
   bool anisotropic = false;
-  patches::PatchMesh patch;           ///< the square's mesh
+  patches::PatchMesh patch;  ///< the square's mesh
   Eigen::VectorXd height;    ///< #n heights per local vertex, metres (boundary data and its fill)
   core::RgbImage heightMap;  ///< top view, colour ramp over [-amplitude, amplitude] with contour lines
   core::RgbImage shaded;     ///< shaded 3D view of the surface (u, v, height)

@@ -12,7 +12,8 @@ void fillTriangle(core::RgbImage& image, const Eigen::Vector2d& a, const Eigen::
                   core::Color color);
 
 /// Draws an anti-aliased line of `width` pixels from a to b (pixel coordinates).
-void drawLine(core::RgbImage& image, const Eigen::Vector2d& a, const Eigen::Vector2d& b, core::Color color, double width = 1.0);
+void drawLine(core::RgbImage& image, const Eigen::Vector2d& a, const Eigen::Vector2d& b, core::Color color,
+              double width = 1.0);
 
 /// Draws a filled disc of `radius` pixels.
 void drawDisc(core::RgbImage& image, const Eigen::Vector2d& center, double radius, core::Color color);
@@ -23,7 +24,8 @@ void paste(core::RgbImage& target, const core::RgbImage& source, int x, int y);
 /// Writes `text` in a 5x7 pixel bitmap font, each font pixel a `scale` x `scale` block, the top-left corner of the
 /// first character at `position` (pixels, x right, y down); characters advance by 6 * scale. Knows digits, letters
 /// (upper case drawn as lower case), '_', '-' and '.'; other characters leave a blank. Pixels outside are clipped.
-void drawText(core::RgbImage& image, const Eigen::Vector2i& position, const std::string& text, core::Color color, int scale = 1);
+void drawText(core::RgbImage& image, const Eigen::Vector2i& position, const std::string& text, core::Color color,
+              int scale = 1);
 
 /// Width and height in pixels of `text` as drawText writes it.
 Eigen::Vector2i textExtent(const std::string& text, int scale = 1);

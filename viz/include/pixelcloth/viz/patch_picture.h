@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/image.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/patch.h"
 
 namespace pixelcloth::viz {

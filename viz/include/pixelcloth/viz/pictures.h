@@ -29,7 +29,8 @@ core::RgbImage renderCageOnMesh(const core::Mesh& mesh, const cage::Cage& cage, 
 
 /// Area distortion in pattern space, before and after relaxation side by side: faces coloured by
 /// log2(3D area / pattern area), red for stretch, blue for compression, white for none; with a colour bar.
-core::RgbImage renderAreaDistortion(const garment::Garment& garment, const cage::Dressing& dressing, int pixelsPerMetre = 800);
+core::RgbImage renderAreaDistortion(const garment::Garment& garment, const cage::Dressing& dressing,
+                                    int pixelsPerMetre = 800);
 
 /// How PNG previews show a cloth image.
 struct PreviewOptions {
@@ -58,7 +59,8 @@ core::RgbImage renderPatternValues(const garment::Garment& garment, const Eigen:
 
 /// The error maps of reconstructDataset's methods, one row each on one colour scale (the largest mean vertex error of
 /// any method, at least 1 cm), titled with the method and its mean error.
-core::RgbImage renderReconstructionErrors(const garment::Garment& garment, const recon::DatasetReconstructionReport& report);
+core::RgbImage renderReconstructionErrors(const garment::Garment& garment,
+                                          const recon::DatasetReconstructionReport& report);
 
 /// Writes cage.json, patches.json and cage.png of a garment into `out` (the `cage` verb's outputs; the demo's too).
 void writeCageFolder(const garment::Garment& garment, const std::filesystem::path& out, int size = 512);

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "pixelcloth/core/image.h"
 #include "pixelcloth/body/skeleton.h"
+#include "pixelcloth/core/image.h"
 
 namespace pixelcloth::viz {
 

@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "pixelcloth/body/body.h"
-#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/core/image.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/viz/render.h"
 
 namespace pixelcloth::viz {
@@ -18,7 +18,8 @@ namespace pixelcloth::viz {
 core::RgbImage renderBodySheet(const body::Body& body, int panelSize = 480);
 
 /// One shaded view of a posed body (and optionally a garment on it), with its skeleton.
-core::RgbImage renderPosedBody(const body::Body& body, const body::Pose& pose, const View& view, bool drawSkeleton = true);
+core::RgbImage renderPosedBody(const body::Body& body, const body::Pose& pose, const View& view,
+                               bool drawSkeleton = true);
 
 /// Pictures laid out in a grid of `columns`, white gaps of `gap` pixels.
 core::RgbImage contactSheet(const std::vector<core::RgbImage>& pictures, int columns, int gap = 8);

@@ -278,7 +278,7 @@ struct CageSplineSolver::Impl {
   std::vector<int> cageVertices;
   std::vector<std::vector<double>> arc;               ///< per curve: cumulative rest arc length per index
   std::vector<std::unordered_map<int, int>> indexOf;  ///< per curve: vertex -> index along the curve
-  std::unique_ptr<GeodesicDistance> geodesic;         ///< RestLengths::Geodesic only
+  std::unique_ptr<core::GeodesicDistance> geodesic;   ///< RestLengths::Geodesic only
   mutable std::mutex geodesicMutex;
   mutable std::map<std::pair<int, int>, double> geodesicCache;
 
@@ -364,7 +364,7 @@ CageSplineSolver::CageSplineSolver(const garment::Garment& garment, const Cage& 
   for (int v = 0; v < impl_->numVertices; ++v)
     if (onCage[v]) impl_->cageVertices.push_back(v);
   if (options.restLengths == RestLengths::Geodesic)
-    impl_->geodesic = std::make_unique<GeodesicDistance>(restPositions, garment.mesh.F);
+    impl_->geodesic = std::make_unique<core::GeodesicDistance>(restPositions, garment.mesh.F);
 }
 
 CageSplineSolver::~CageSplineSolver() = default;

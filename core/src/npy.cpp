@@ -168,11 +168,7 @@ int NpyArray::itemSize() const {
   return size;
 }
 
-std::string NpyArray::shapeString() const {
-  std::string s = "(";
-  for (size_t i = 0; i < shape.size(); ++i) s += (i ? ", " : "") + std::to_string(shape[i]);
-  return s + (shape.size() == 1 ? ",)" : ")");
-}
+std::string NpyArray::shapeString() const { return npyShapeString(shape); }
 
 void NpyArray::checkDtype(const std::string& expected) const {
   static const char* const kNames[][2] = {
@@ -184,7 +180,19 @@ void NpyArray::checkDtype(const std::string& expected) const {
   PIXELCLOTH_CHECK(dtype == expected, prefix(source) << ": dtype " << dtype << ", expected " << name << expected);
 }
 
-NpyArray readNpy(const fs::path& path) {
+std::string npyShapeString(const std::vector<std::int64_t>& shape) {
+  std::string text = "(";
+  for (size_t i = 0; i < shape.size(); ++i) text += (i ? ", " : "") + std::to_string(shape[i]);
+  return text + (shape.size() == 1 ? ",)" : ")");
+}
+
+std::int64_t NpyHeader::elements() const {
+  std::int64_t n = 1;
+  for (std::int64_t d : shape) n *= d;
+  return n;
+}
+
+NpyHeader readNpyHeader(const fs::path& path) {
   const std::string file = path.string();
   std::error_code ec;
   PIXELCLOTH_CHECK(fs::exists(path, ec), file << ": no such file");
@@ -233,10 +241,39 @@ NpyArray readNpy(const fs::path& path) {
   PIXELCLOTH_CHECK(available == needed, file << ": " << available - needed << " bytes after the data that shape "
                                              << array.shapeString() << " of " << array.dtype
                                              << " needs; the file is not a single .npy array");
-  array.bytes.resize(needed);
+  NpyHeader result;
+  result.dtype = array.dtype;
+  result.shape = array.shape;
+  result.itemSize = item;
+  result.dataOffset = static_cast<std::int64_t>(preambleSize + headerLength);
+  return result;
+}
+
+NpyArray readNpy(const fs::path& path) {
+  const std::string file = path.string();
+  const NpyHeader header = readNpyHeader(path);
+  NpyArray array{header.dtype, header.shape, {}, file};
+  const std::int64_t needed = header.elements() * header.itemSize;
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(header.dataOffset);
+  array.bytes.resize(static_cast<size_t>(needed));
   in.read(reinterpret_cast<char*>(array.bytes.data()), static_cast<std::streamsize>(needed));
   PIXELCLOTH_CHECK(in, file << ": cannot read " << needed << " bytes of data");
   return array;
+}
+
+std::string npyPreamble(const std::string& dtype, const std::vector<std::int64_t>& shape) {
+  std::string header = "{'descr': '" + dtype + "', 'fortran_order': False, 'shape': " + npyShapeString(shape) + ", }";
+  // Pad with spaces and end with a newline so that the data starts on a 64-byte boundary, as numpy does.
+  const bool version2 = header.size() + 1 + 10 > 65535;
+  const size_t preambleSize = version2 ? 12 : 10;
+  header.append((64 - (preambleSize + header.size() + 1) % 64) % 64, ' ');
+  header += '\n';
+  std::string preamble(kMagic, kMagicSize);
+  preamble += static_cast<char>(version2 ? 2 : 1);
+  preamble += '\0';
+  for (size_t i = 0; i < preambleSize - 8; ++i) preamble += static_cast<char>((header.size() >> (8 * i)) & 0xff);
+  return preamble + header;
 }
 
 void writeNpy(const fs::path& path, const NpyArray& array) {
@@ -250,23 +287,12 @@ void writeNpy(const fs::path& path, const NpyArray& array) {
   PIXELCLOTH_CHECK(static_cast<std::uint64_t>(array.size()) * item == array.bytes.size(),
                    file << ": shape " << array.shapeString() << " of " << array.dtype << " needs "
                         << array.size() * item << " bytes, the array has " << array.bytes.size());
-  std::string header =
-      "{'descr': '" + array.dtype + "', 'fortran_order': False, 'shape': " + array.shapeString() + ", }";
-  // Pad with spaces and end with a newline so that the data starts on a 64-byte boundary, as numpy does.
-  const bool version2 = header.size() + 1 + 10 > 65535;
-  const size_t preambleSize = version2 ? 12 : 10;
-  header.append((64 - (preambleSize + header.size() + 1) % 64) % 64, ' ');
-  header += '\n';
-  std::string preamble(kMagic, kMagicSize);
-  preamble += static_cast<char>(version2 ? 2 : 1);
-  preamble += '\0';
-  for (size_t i = 0; i < preambleSize - 8; ++i) preamble += static_cast<char>((header.size() >> (8 * i)) & 0xff);
+  const std::string preamble = npyPreamble(array.dtype, array.shape);
 
   writeAtomically(path, [&](const fs::path& temporary) {
     std::ofstream out(temporary, std::ios::binary);
     PIXELCLOTH_CHECK(out, file << ": cannot open for writing");
     out.write(preamble.data(), static_cast<std::streamsize>(preamble.size()));
-    out.write(header.data(), static_cast<std::streamsize>(header.size()));
     out.write(reinterpret_cast<const char*>(array.bytes.data()), static_cast<std::streamsize>(array.bytes.size()));
     out.close();
     PIXELCLOTH_CHECK(out, file << ": write failed (disk full?)");

@@ -638,7 +638,7 @@ void DatasetWriter::finish() {
     const fs::path target = m.folder / part.file;
     core::writeAtomically(target, [&](const fs::path& temporary) {
       CrcWriter out(temporary);
-      const std::string preamble = npyPreamble("<f4", part.shape);
+      const std::string preamble = core::npyPreamble("<f4", part.shape);
       out.write(preamble.data(), preamble.size());
       buffer.resize(part.floats);
       for (int row = 0; row < rows; ++row) {

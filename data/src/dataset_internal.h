@@ -25,25 +25,6 @@ std::vector<std::string> sharedFiles(const std::filesystem::path& folder);
 /// meshing time); the others must be byte-identical when a dataset is resumed or shards are merged.
 inline bool byteComparable(const std::string& sharedFile) { return sharedFile != "garment/garment.json"; }
 
-/// The header of a .npy file: dtype, shape and where the data starts; the data size is checked against the file.
-struct NpyHeader {
-  std::string dtype;
-  std::vector<std::int64_t> shape;
-  std::int64_t dataOffset = 0;
-  std::int64_t itemSize = 0;
-  std::int64_t elements() const;
-  std::string shapeString() const;
-};
-
-/// A shape as Python writes it: "(3, 4)", "(5,)".
-std::string shapeString(const std::vector<std::int64_t>& shape);
-
-/// Reads and checks the header of a .npy file (version 1.0-3.0, C order, little endian, data length exact).
-NpyHeader readNpyHeader(const std::filesystem::path& path);
-
-/// The preamble (magic, version, header dict padded to 64 bytes) that core::writeNpy writes for this array.
-std::string npyPreamble(const std::string& dtype, const std::vector<std::int64_t>& shape);
-
 /// Appends bytes to a file while computing their CRC-32.
 class CrcWriter {
  public:

@@ -92,16 +92,16 @@ DatasetInfo mergeDatasets(const std::vector<fs::path>& shardFolders, const fs::p
   for (const Part& part : parts) {
     core::writeAtomically(out / part.file, [&](const fs::path& temporary) {
       CrcWriter writer(temporary);
-      const std::string preamble = npyPreamble(part.dtype, part.shape);
+      const std::string preamble = core::npyPreamble(part.dtype, part.shape);
       writer.write(preamble.data(), preamble.size());
       for (const DatasetInfo& shard : shards) {
         const fs::path input = shard.folder / part.file;
-        const NpyHeader header = readNpyHeader(input);
+        const core::NpyHeader header = core::readNpyHeader(input);
         std::vector<std::int64_t> shape = part.shape;
         shape[0] = shard.settings.rows();
         PIXELCLOTH_CHECK(header.dtype == part.dtype && header.shape == shape,
                          input.string() << ": " << header.dtype << " of shape " << header.shapeString() << ", expected "
-                                        << part.dtype << " of shape " << shapeString(shape));
+                                        << part.dtype << " of shape " << core::npyShapeString(shape));
         std::ifstream in(input, std::ios::binary);
         std::uint32_t crc = 0;
         std::int64_t position = 0;

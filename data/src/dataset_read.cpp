@@ -105,7 +105,7 @@ core::NpyArray readFloatArray(const fs::path& path, const std::vector<std::int64
   core::NpyArray array = core::readNpy(path);
   array.checkDtype("<f4");
   PIXELCLOTH_CHECK(array.shape == shape,
-                   path.string() << ": shape " << array.shapeString() << ", expected " << shapeString(shape));
+                   path.string() << ": shape " << array.shapeString() << ", expected " << core::npyShapeString(shape));
   return array;
 }
 
@@ -202,22 +202,22 @@ DatasetCheckReport checkDataset(const fs::path& folder, const DatasetCheckOption
 
   // Shapes and dtypes.
   auto expectHeader = [&](const char* name, const std::string& dtype, const std::vector<std::int64_t>& shape) {
-    const NpyHeader h = readNpyHeader(folder / name);
+    const core::NpyHeader h = core::readNpyHeader(folder / name);
     PIXELCLOTH_CHECK(h.dtype == dtype && h.shape == shape,
-                     (folder / name).string()
-                         << ": " << h.dtype << " of shape " << h.shapeString() << ", expected " << dtype << " of shape "
-                         << shapeString(shape) << " (manifest.json: " << rows << " rows, " << V << " vertices)");
+                     (folder / name).string() << ": " << h.dtype << " of shape " << h.shapeString() << ", expected "
+                                              << dtype << " of shape " << core::npyShapeString(shape)
+                                              << " (manifest.json: " << rows << " rows, " << V << " vertices)");
     return h;
   };
-  const NpyHeader posesHeader = expectHeader(kPoses, "<f4", {rows, s.poseSize});
-  const NpyHeader positionsHeader = expectHeader(kPositions, "<f4", {rows, V, 3});
-  const NpyHeader offsetsHeader = expectHeader(kOffsets, "<f4", {rows, V, 3});
-  const NpyHeader splitHeader = expectHeader(kSplit, "|u1", {rows});
+  const core::NpyHeader posesHeader = expectHeader(kPoses, "<f4", {rows, s.poseSize});
+  const core::NpyHeader positionsHeader = expectHeader(kPositions, "<f4", {rows, V, 3});
+  const core::NpyHeader offsetsHeader = expectHeader(kOffsets, "<f4", {rows, V, 3});
+  const core::NpyHeader splitHeader = expectHeader(kSplit, "|u1", {rows});
 
   // Values: finite, poses are rotations, splits valid and as the seed says.
   core::Progress progress("dataset check", 3 * rows);
   std::vector<float> buffer;
-  for (const auto& [name, header] : {std::pair<const char*, const NpyHeader*>{kPoses, &posesHeader},
+  for (const auto& [name, header] : {std::pair<const char*, const core::NpyHeader*>{kPoses, &posesHeader},
                                      {kPositions, &positionsHeader},
                                      {kOffsets, &offsetsHeader}}) {
     const fs::path path = folder / name;

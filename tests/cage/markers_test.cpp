@@ -15,6 +15,7 @@
 #include "support/cage_fixtures.h"
 #include "support/test_util.h"
 
+namespace pc = pixelcloth::core;
 namespace pcg = pixelcloth::cage;
 using pixelcloth::testing::inputErrorOf;
 
@@ -159,14 +160,14 @@ TEST(RestLengths, PolylineOfTheFlatPatternEqualsPatternLengthsAndGeodesicsAreNoL
   for (size_t i = 0; i < pattern.size(); ++i) EXPECT_NEAR(pattern[i], polyline[i], 1e-12);
 
   // The centre line is straight in the pattern: its geodesic equals the polyline (and the chord).
-  const pcg::GeodesicDistance geodesic(flat, F);
+  const pc::GeodesicDistance geodesic(flat, F);
   const int a = hem.vertices.front(), b = hem.vertices.back();
   EXPECT_NEAR(geodesic.between(a, b), polyline.back(), 1e-6 * polyline.back());
   EXPECT_NEAR(geodesic.between(a, b), (flat.row(a) - flat.row(b)).norm(), 1e-9);
   // Along a curved line of the rest shirt in 3D (the neckline), the geodesic between two vertices is never longer
   // than the polyline between them, and not much shorter for close vertices.
   const pcg::CageCurve& neck = *shirtCage().findCurve("neckline");
-  const pcg::GeodesicDistance rest(g.mesh.V, g.mesh.F);
+  const pc::GeodesicDistance rest(g.mesh.V, g.mesh.F);
   const std::vector<double> s = pcg::polylineArcLengths(g.mesh.V, neck);
   for (size_t j : {size_t(1), size_t(3), neck.vertices.size() / 3}) {
     const double d = rest.between(neck.vertices[0], neck.vertices[j]);

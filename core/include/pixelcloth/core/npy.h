@@ -68,6 +68,27 @@ struct NpyArray {
   void checkDtype(const std::string& expected) const;
 };
 
+/// A shape as Python writes it: "(3, 4)", "(5,)", "()".
+std::string npyShapeString(const std::vector<std::int64_t>& shape);
+
+/// What the header of a .npy file says, without reading its data: for arrays streamed row by row (datasets of a GB).
+struct NpyHeader {
+  std::string dtype;                ///< "<f4", "<f8", "<i4", "<i8" or "|u1"
+  std::vector<std::int64_t> shape;  ///< one entry per dimension
+  std::int64_t itemSize = 0;        ///< bytes per element
+  std::int64_t dataOffset = 0;      ///< where the data starts in the file (bytes)
+  std::int64_t elements() const;    ///< product of `shape`
+  std::string shapeString() const { return npyShapeString(shape); }
+};
+
+/// Reads and checks the header of a .npy file, with the messages of readNpy: magic, version 1.0-3.0, the header dict,
+/// C order, little endian and a supported dtype, and a data length that is exactly what the shape needs.
+NpyHeader readNpyHeader(const std::filesystem::path& path);
+
+/// The bytes writeNpy puts before the data of an array of `dtype` and `shape`: magic, version (1.0, or 2.0 for a
+/// header over 64 KiB) and the header dict padded so that the data starts on a 64-byte boundary, as numpy does.
+std::string npyPreamble(const std::string& dtype, const std::vector<std::int64_t>& shape);
+
 /// Reads a .npy file, format version 1.0, 2.0 or 3.0. Throws `InputError` naming the file for a missing file, bad
 /// magic, a malformed header, fortran_order True, a big-endian or unsupported dtype, and data shorter or longer than
 /// the shape needs.

@@ -1,5 +1,7 @@
 // Runs the real `pixelcloth` executable: each verb's outputs, and bad input refused with exit code 2, a message
 // naming the file or option and what was expected, and no half-written files.
+#include "support/cli.h"
+
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -30,7 +32,15 @@ namespace pixelcloth::apps {
 namespace {
 
 namespace fs = std::filesystem;
+using pixelcloth::testing::capture;
+using pixelcloth::testing::CliRun;
+using pixelcloth::testing::filesUnder;
 using pixelcloth::testing::freshDir;
+using pixelcloth::testing::quote;
+using pixelcloth::testing::readFile;
+using pixelcloth::testing::refused;
+using pixelcloth::testing::runPixelcloth;
+using pixelcloth::testing::writeFile;
 
 /// The 10 posable joints, as `pixelcloth body --joints` requires them.
 const std::vector<std::string> kPoseJointNames = {"lower_back", "spine",     "spine1",     "neck",  "l_shoulder",
@@ -39,92 +49,8 @@ const std::vector<std::string> kPoseJointNames = {"lower_back", "spine",     "sp
 // ---------------------------------------------------------------------------------------------------------------------
 // Running commands
 
-/// What one command did: its exit code and what it printed.
-struct CliRun {
-  std::string command;
-  int status = -1;  ///< WEXITSTATUS, or -1 when the command did not exit normally (signal)
-  std::string out;  ///< stdout
-  std::string err;  ///< stderr
-};
-
-std::ostream& operator<<(std::ostream& os, const CliRun& run) {
-  return os << "\n$ " << run.command << "\nexit code " << run.status << "\n--- stdout ---\n"
-            << run.out.substr(0, 4000) << "\n--- stderr ---\n"
-            << run.err.substr(0, 4000) << "\n";
-}
-
-/// One shell word: `s` in single quotes.
-std::string quote(const std::string& s) {
-  std::string quoted = "'";
-  for (char c : s) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void writeFile(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  ASSERT_TRUE(out.good()) << "cannot write " << path;
-}
-
-/// Runs a shell command line; stdout through a pipe, stderr through a temporary file.
-CliRun capture(const std::string& command) {
-  static int counter = 0;
-  fs::path errFile = fs::temp_directory_path() /
-                     ("pixelcloth-cli-test-stderr." + std::to_string(::getpid()) + "." + std::to_string(counter++));
-  CliRun run;
-  run.command = command;
-  FILE* pipe = ::popen((command + " 2>" + quote(errFile.string())).c_str(), "r");
-  if (pipe == nullptr) return run;
-  char buffer[4096];
-  for (size_t n; (n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0;) run.out.append(buffer, n);
-  const int raw = ::pclose(pipe);
-  run.status = raw != -1 && WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  run.err = readFile(errFile);
-  std::error_code ignored;
-  fs::remove(errFile, ignored);
-  return run;
-}
-
-/// Runs `pixelcloth ARGS...`, each argument passed as one word.
-CliRun pixelcloth(std::initializer_list<std::string> args) {
-  std::string command = quote(PIXELCLOTH_BINARY);
-  for (const std::string& arg : args) command += " " + quote(arg);
-  return capture(command);
-}
-
-/// Exit code 2 and a message on stderr that contains every one of `mentions`; no internal error.
-::testing::AssertionResult refused(const CliRun& run, const std::vector<std::string>& mentions) {
-  if (run.status != 2) return ::testing::AssertionFailure() << "expected exit code 2" << run;
-  if (run.err.find("internal error") != std::string::npos)
-    return ::testing::AssertionFailure() << "bad input reported as an internal error" << run;
-  for (const std::string& mention : mentions) {
-    if (run.err.find(mention) == std::string::npos)
-      return ::testing::AssertionFailure() << "the message does not mention '" << mention << "'" << run;
-  }
-  return ::testing::AssertionSuccess();
-}
-
 // ---------------------------------------------------------------------------------------------------------------------
 // Files
-
-/// Every regular file under `dir`, relative and sorted; empty when `dir` does not exist.
-std::vector<std::string> filesUnder(const fs::path& dir) {
-  std::vector<std::string> files;
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) return files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    if (entry.is_regular_file()) files.push_back(fs::relative(entry.path(), dir).string());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 std::string listing(const std::vector<std::string>& files) {
   std::string text;
@@ -204,7 +130,7 @@ const SharedBody& sharedBody() {
     const fs::path building = root / ("apps-building-body." + std::to_string(::getpid()));
     fs::remove_all(building, ec);
     fs::create_directories(root, ec);
-    result.run = pixelcloth({"body", "--out", building.string()});
+    result.run = runPixelcloth({"body", "--out", building.string()});
     result.ok = result.run.status == 0;
     if (!result.ok) return result;
     fs::rename(building, result.folder, ec);
@@ -271,13 +197,13 @@ class CliBodyTest : public CliTest {
 // The command line itself
 
 TEST_F(CliTest, NoVerbExitsTwo) {
-  CliRun run = pixelcloth({});
+  CliRun run = runPixelcloth({});
   EXPECT_EQ(run.status, 2) << run;
   EXPECT_NE((run.out + run.err).find("subcommand"), std::string::npos) << run;
 }
 
 TEST_F(CliTest, UnknownVerbExitsTwo) {
-  CliRun run = pixelcloth({"drape"});
+  CliRun run = runPixelcloth({"drape"});
   EXPECT_EQ(run.status, 2) << run;
 }
 
@@ -308,11 +234,11 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
   };
   for (const auto& [verb, options] : verbs) {
     SCOPED_TRACE(verb);
-    CliRun run = pixelcloth({verb, "--help"});
+    CliRun run = runPixelcloth({verb, "--help"});
     EXPECT_EQ(run.status, 0) << run;
     for (const std::string& option : options) EXPECT_NE(run.out.find(option), std::string::npos) << option << run;
   }
-  CliRun top = pixelcloth({"--help"});
+  CliRun top = runPixelcloth({"--help"});
   EXPECT_EQ(top.status, 0) << top;
   for (const auto& [verb, options] : verbs) EXPECT_NE(top.out.find(verb), std::string::npos) << verb << top;
 }
@@ -351,13 +277,14 @@ TEST_F(CliBodyTest, BodyWritesFolderWithNormalisedWeights) {
 
 TEST_F(CliTest, BodyRefusesShapeOutOfRange) {
   fs::path out = dir("out") / "body";
-  EXPECT_TRUE(refused(pixelcloth({"body", "--out", out.string(), "--shape", "5"}), {"--shape", "5", "not in range"}));
+  EXPECT_TRUE(
+      refused(runPixelcloth({"body", "--out", out.string(), "--shape", "5"}), {"--shape", "5", "not in range"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 
 TEST_F(CliTest, BodyRefusesUnknownCorruptMode) {
   fs::path out = dir("out") / "body";
-  EXPECT_TRUE(refused(pixelcloth({"body", "--out", out.string(), "--corrupt-weights", "legs"}),
+  EXPECT_TRUE(refused(runPixelcloth({"body", "--out", out.string(), "--corrupt-weights", "legs"}),
                       {"--corrupt-weights", "legs", "torso"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
@@ -371,14 +298,15 @@ TEST_F(CliTest, BodyImportNamesMissingMesh) {
   fs::path out = work / "out";
   fs::path missing = work / "missing.obj";
   EXPECT_TRUE(
-      refused(pixelcloth({"body", "--import", missing.string(), "--joints", joints.string(), "--out", out.string()}),
+      refused(runPixelcloth({"body", "--import", missing.string(), "--joints", joints.string(), "--out", out.string()}),
               {missing.string(), "no such file"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 
 TEST_F(CliTest, BodyImportNeedsJoints) {
   fs::path out = dir("out") / "body";
-  EXPECT_TRUE(refused(pixelcloth({"body", "--import", "mesh.obj", "--out", out.string()}), {"--import", "--joints"}));
+  EXPECT_TRUE(
+      refused(runPixelcloth({"body", "--import", "mesh.obj", "--out", out.string()}), {"--import", "--joints"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 
@@ -399,7 +327,7 @@ TEST_F(CliBodyTest, ImportRefusesOpenMesh) {
   writeFile(mesh, joinLines(kept));
   writeFile(joints, jointsOf(body_).dump(2));
   EXPECT_TRUE(
-      refused(pixelcloth({"body", "--import", mesh.string(), "--joints", joints.string(), "--out", out.string()}),
+      refused(runPixelcloth({"body", "--import", mesh.string(), "--joints", joints.string(), "--out", out.string()}),
               {mesh.string(), "closed and manifold"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
@@ -410,8 +338,8 @@ TEST_F(CliBodyTest, ImportRefusesUnknownJoint) {
   joints["joints"]["l_elbow"] = {0.5, 1.45, 0.0};
   fs::path jointsFile = work / "joints.json", out = work / "out";
   writeFile(jointsFile, joints.dump(2));
-  EXPECT_TRUE(refused(pixelcloth({"body", "--import", (body_ / "body.obj").string(), "--joints", jointsFile.string(),
-                                  "--out", out.string()}),
+  EXPECT_TRUE(refused(runPixelcloth({"body", "--import", (body_ / "body.obj").string(), "--joints", jointsFile.string(),
+                                     "--out", out.string()}),
                       {jointsFile.string(), "l_elbow"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
@@ -423,9 +351,9 @@ TEST_F(CliBodyTest, ImportRefusesJointOutsideBody) {
   fs::path jointsFile = work / "joints.json", out = work / "out";
   writeFile(jointsFile, joints.dump(2));
   fs::path mesh = body_ / "body.obj";
-  EXPECT_TRUE(
-      refused(pixelcloth({"body", "--import", mesh.string(), "--joints", jointsFile.string(), "--out", out.string()}),
-              {mesh.string(), "neck", "outside"}));
+  EXPECT_TRUE(refused(
+      runPixelcloth({"body", "--import", mesh.string(), "--joints", jointsFile.string(), "--out", out.string()}),
+      {mesh.string(), "neck", "outside"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 
@@ -438,8 +366,8 @@ TEST_F(CliBodyTest, ImportRefusesJointCoordinateTooLargeForADouble) {
   text.replace(x, text.find(',', x) - x, "1e400");  // valid JSON, but no double holds it
   fs::path jointsFile = work / "joints.json", out = work / "out";
   writeFile(jointsFile, text);
-  EXPECT_TRUE(refused(pixelcloth({"body", "--import", (body_ / "body.obj").string(), "--joints", jointsFile.string(),
-                                  "--out", out.string()}),
+  EXPECT_TRUE(refused(runPixelcloth({"body", "--import", (body_ / "body.obj").string(), "--joints", jointsFile.string(),
+                                     "--out", out.string()}),
                       {jointsFile.string(), "1e400"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
@@ -454,7 +382,7 @@ TEST_F(CliBodyTest, ImportRefusesNanCoordinate) {
   writeFile(mesh, joinLines(text));
   writeFile(joints, jointsOf(body_).dump(2));
   EXPECT_TRUE(
-      refused(pixelcloth({"body", "--import", mesh.string(), "--joints", joints.string(), "--out", out.string()}),
+      refused(runPixelcloth({"body", "--import", mesh.string(), "--joints", joints.string(), "--out", out.string()}),
               {mesh.string(), "vertex 1"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
@@ -463,7 +391,7 @@ TEST_F(CliBodyTest, ImportOfMannequinWritesBodyFolder) {
   fs::path work = dir("work");
   fs::path joints = work / "joints.json", out = work / "out";
   writeFile(joints, jointsOf(body_).dump(2));
-  CliRun run = pixelcloth(
+  CliRun run = runPixelcloth(
       {"body", "--import", (body_ / "body.obj").string(), "--joints", joints.string(), "--out", out.string()});
   ASSERT_EQ(run.status, 0) << run;
   for (const char* name : {"body.obj", "skeleton.json", "weights.npy", "parts.json"})
@@ -480,7 +408,7 @@ TEST_F(CliBodyTest, ImportOfMannequinWritesBodyFolder) {
 
 TEST_F(CliBodyTest, PoseRandomWritesMeshesAndPoseArray) {
   fs::path out = dir("out") / "posed";
-  CliRun run = pixelcloth({"pose", "--body", body_.string(), "--random", "3", "--seed", "1", "--out", out.string()});
+  CliRun run = runPixelcloth({"pose", "--body", body_.string(), "--random", "3", "--seed", "1", "--out", out.string()});
   ASSERT_EQ(run.status, 0) << run;
   const int vertices = bodyVertices();
   for (const char* name : {"posed_000.obj", "posed_001.obj", "posed_002.obj"}) {
@@ -502,7 +430,7 @@ TEST_F(CliBodyTest, PoseRefusesWeightsOfWrongVertexCount) {
   fs::path body = copyOfBody(), out = dir("out") / "posed";
   core::writeNpy(body / "weights.npy", Eigen::MatrixXf::Constant(100, 12, 1.0f / 12).eval());
   EXPECT_TRUE(
-      refused(pixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
+      refused(runPixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
               {(body / "weights.npy").string(), "(100, 12)", "expected (" + std::to_string(bodyVertices()) + ", 12)"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
@@ -511,7 +439,7 @@ TEST_F(CliBodyTest, PoseRefusesTruncatedWeights) {
   fs::path body = copyOfBody(), out = dir("out") / "posed";
   std::string bytes = readFile(body / "weights.npy");
   writeFile(body / "weights.npy", bytes.substr(0, bytes.size() / 2));
-  EXPECT_TRUE(refused(pixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
+  EXPECT_TRUE(refused(runPixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
                       {(body / "weights.npy").string(), "truncated"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
@@ -519,7 +447,7 @@ TEST_F(CliBodyTest, PoseRefusesTruncatedWeights) {
 TEST_F(CliBodyTest, PoseRefusesFloat64Weights) {
   fs::path body = copyOfBody(), out = dir("out") / "posed";
   core::writeNpy(body / "weights.npy", Eigen::MatrixXd::Constant(bodyVertices(), 12, 1.0 / 12).eval());
-  EXPECT_TRUE(refused(pixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
+  EXPECT_TRUE(refused(runPixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
                       {(body / "weights.npy").string(), "<f8", "float32"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
@@ -527,7 +455,7 @@ TEST_F(CliBodyTest, PoseRefusesFloat64Weights) {
 TEST_F(CliTest, PoseRefusesMissingBodyFolder) {
   fs::path work = dir("work");
   fs::path body = work / "no-such-body", out = work / "posed";
-  EXPECT_TRUE(refused(pixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
+  EXPECT_TRUE(refused(runPixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
                       {body.string(), "body folder"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
@@ -535,7 +463,7 @@ TEST_F(CliTest, PoseRefusesMissingBodyFolder) {
 TEST_F(CliBodyTest, PoseRefusesInvalidSkeletonJson) {
   fs::path body = copyOfBody(), out = dir("out") / "posed";
   writeFile(body / "skeleton.json", "{\"joints\": [ {\"name\": \"root\", ");
-  EXPECT_TRUE(refused(pixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
+  EXPECT_TRUE(refused(runPixelcloth({"pose", "--body", body.string(), "--random", "3", "--out", out.string()}),
                       {(body / "skeleton.json").string(), "JSON"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
@@ -548,7 +476,7 @@ class CliPoseFileTest : public CliBodyTest {
     poseFile_ = work / "p.json";
     out_ = work / "posed";
     writeFile(poseFile_, text);
-    return pixelcloth({"pose", "--body", body_.string(), "--pose", poseFile_.string(), "--out", out_.string()});
+    return runPixelcloth({"pose", "--body", body_.string(), "--pose", poseFile_.string(), "--out", out_.string()});
   }
   CliRun poseWith(const nlohmann::json& pose) { return poseWith(pose.dump()); }
   fs::path poseFile_, out_;
@@ -612,7 +540,7 @@ TEST_F(CliPoseFileTest, LoweringTheLeftArmLowersTheLeftHand) {
 
 TEST_F(CliTest, GarmentTShirtWritesMeshWithUvs) {
   fs::path out = dir("out") / "tshirt";
-  CliRun run = pixelcloth({"garment", "tshirt", "--out", out.string()});
+  CliRun run = runPixelcloth({"garment", "tshirt", "--out", out.string()});
   ASSERT_EQ(run.status, 0) << run;
   ASSERT_TRUE(fs::is_regular_file(out / "garment.obj")) << listing(filesUnder(out));
   int texcoords = 0, faces = 0;
@@ -630,7 +558,7 @@ TEST_F(CliTest, GarmentTShirtWritesMeshWithUvs) {
 
 TEST_F(CliTest, GarmentRefusesUnknownKind) {
   fs::path out = dir("out") / "skirt";
-  EXPECT_TRUE(refused(pixelcloth({"garment", "skirt", "--out", out.string()}), {"skirt", "tshirt", "necktie"}));
+  EXPECT_TRUE(refused(runPixelcloth({"garment", "skirt", "--out", out.string()}), {"skirt", "tshirt", "necktie"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 
@@ -638,7 +566,7 @@ TEST_F(CliTest, GarmentRefusesFileAsOutputFolder) {
   fs::path work = dir("work");
   fs::path file = work / "F";
   writeFile(file, "not a folder\n");
-  EXPECT_TRUE(refused(pixelcloth({"garment", "tshirt", "--out", file.string()}), {file.string(), "not a folder"}));
+  EXPECT_TRUE(refused(runPixelcloth({"garment", "tshirt", "--out", file.string()}), {file.string(), "not a folder"}));
   EXPECT_EQ(readFile(file), "not a folder\n");
   EXPECT_EQ(filesUnder(work), std::vector<std::string>{"F"});
 }
@@ -648,7 +576,7 @@ TEST_F(CliTest, GarmentRefusesFileAsOutputFolder) {
 
 TEST_F(CliTest, BasesWritesFiguresAndContactSheet) {
   fs::path out = dir("out") / "bases";
-  CliRun run = pixelcloth({"bases", "--figures", out.string(), "--cells", "6", "--size", "48"});
+  CliRun run = runPixelcloth({"bases", "--figures", out.string(), "--cells", "6", "--size", "48"});
   ASSERT_EQ(run.status, 0) << run;
   for (const std::string shape : {"one_bump", "two_bumps", "sine", "s_curve"})
     for (const std::string kind : {"_iso", "_aniso"}) {
@@ -662,14 +590,14 @@ TEST_F(CliTest, BasesWritesFiguresAndContactSheet) {
 
 TEST_F(CliTest, BasesRefusesRatioOutsideUnitInterval) {
   fs::path out = dir("out") / "bases";
-  EXPECT_TRUE(refused(pixelcloth({"bases", "--figures", out.string(), "--ratio", "0"}), {"ratio", "(0, 1]"}));
+  EXPECT_TRUE(refused(runPixelcloth({"bases", "--figures", out.string(), "--ratio", "0"}), {"ratio", "(0, 1]"}));
 }
 
 // cage
 
 TEST_F(CliTest, CageWritesCurvesPatchesAndPicture) {
   fs::path out = dir("out") / "cage";
-  CliRun run = pixelcloth({"cage", "--garment", "tshirt", "--out", out.string()});
+  CliRun run = runPixelcloth({"cage", "--garment", "tshirt", "--out", out.string()});
   ASSERT_EQ(run.status, 0) << run;
   const nlohmann::json cage = nlohmann::json::parse(readFile(out / "cage.json"));
   EXPECT_EQ(cage.at("garment"), "tshirt");
@@ -688,7 +616,7 @@ TEST_F(CliTest, CageWritesCurvesPatchesAndPicture) {
 
 TEST_F(CliTest, CageRefusesUnknownGarment) {
   fs::path out = dir("out") / "skirt";
-  EXPECT_TRUE(refused(pixelcloth({"cage", "--garment", "skirt", "--out", out.string()}), {"skirt"}));
+  EXPECT_TRUE(refused(runPixelcloth({"cage", "--garment", "skirt", "--out", out.string()}), {"skirt"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 
@@ -697,7 +625,7 @@ TEST_F(CliTest, CageRefusesUnknownGarment) {
 
 TEST_F(CliBodyTest, DressWritesShirtOnBodyWithLessAreaDistortionAfterRelaxation) {
   fs::path out = dir("out") / "dressed";
-  CliRun run = pixelcloth({"dress", "--garment", "tshirt", "--body", body_.string(), "--out", out.string()});
+  CliRun run = runPixelcloth({"dress", "--garment", "tshirt", "--body", body_.string(), "--out", out.string()});
   ASSERT_EQ(run.status, 0) << run;
   EXPECT_EQ(filesUnder(out),
             (std::vector<std::string>{"area_distortion.png", "dressed.obj", "dressed.png", "dressing.json"}));
@@ -722,22 +650,22 @@ TEST_F(CliBodyTest, DressWritesShirtOnBodyWithLessAreaDistortionAfterRelaxation)
 TEST_F(CliTest, DressRefusesMissingBodyFolder) {
   fs::path work = dir("work");
   fs::path body = work / "no-such-body", out = work / "dressed";
-  EXPECT_TRUE(
-      refused(pixelcloth({"dress", "--body", body.string(), "--out", out.string()}), {body.string(), "body folder"}));
+  EXPECT_TRUE(refused(runPixelcloth({"dress", "--body", body.string(), "--out", out.string()}),
+                      {body.string(), "body folder"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 
 TEST_F(CliBodyTest, DressRefusesBrokenBodyFolder) {
   fs::path body = copyOfBody(), out = dir("out") / "dressed";
   writeFile(body / "skeleton.json", "{\"joints\": [ {\"name\": \"root\", ");
-  EXPECT_TRUE(refused(pixelcloth({"dress", "--garment", "necktie", "--body", body.string(), "--out", out.string()}),
+  EXPECT_TRUE(refused(runPixelcloth({"dress", "--garment", "necktie", "--body", body.string(), "--out", out.string()}),
                       {(body / "skeleton.json").string(), "JSON"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 
 TEST_F(CliTest, DressRefusesUnknownGarment) {
   fs::path out = dir("out") / "dressed";
-  EXPECT_TRUE(refused(pixelcloth({"dress", "--garment", "skirt", "--out", out.string()}), {"skirt"}));
+  EXPECT_TRUE(refused(runPixelcloth({"dress", "--garment", "skirt", "--out", out.string()}), {"skirt"}));
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 
@@ -745,7 +673,7 @@ TEST_F(CliTest, DressRefusesUnknownGarment) {
 // bench and demo
 
 TEST_F(CliTest, BenchPrintsOnlyJsonLines) {
-  CliRun run = pixelcloth({"bench", "--repeats", "1"});
+  CliRun run = runPixelcloth({"bench", "--repeats", "1"});
   ASSERT_EQ(run.status, 0) << run;
   int figures = 0;
   for (const std::string& line : lines(run.out)) {
@@ -765,7 +693,7 @@ TEST_F(CliTest, BenchPrintsOnlyJsonLines) {
 TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
   fs::path out = dir("out") / "report";
   CliRun run =
-      pixelcloth({"demo", "--out", out.string(), "--poses", "2", "--filter-poses", "16", "--tshirt-samples", "10"});
+      runPixelcloth({"demo", "--out", out.string(), "--poses", "2", "--filter-poses", "16", "--tshirt-samples", "10"});
   ASSERT_EQ(run.status, 0) << run;
   ASSERT_TRUE(fs::is_regular_file(out / "index.html")) << listing(filesUnder(out));
   EXPECT_NO_THROW(nlohmann::json::parse(readFile(out / "report.json")));
@@ -799,15 +727,15 @@ TEST_F(CliTest, ImagesRoundTripThroughExr) {
   fs::path work = dir("work");
   Eigen::MatrixXf x = shirtOffsets();
   core::writeNpy(work / "values.npy", x);
-  CliRun run = pixelcloth(
+  CliRun run = runPixelcloth(
       {"images", "--garment", "tshirt", "--values", (work / "values.npy").string(), "--out", (work / "img").string()});
   ASSERT_EQ(run.status, 0) << run;
   EXPECT_TRUE(isPng(work / "img" / "cloth.png"));
   core::ExrImage exr = core::readExr(work / "img" / "cloth.exr");
   EXPECT_EQ(exr.width, 256);
   EXPECT_TRUE(exr.hasChannel("front.du") && exr.hasChannel("back.mask"));
-  run = pixelcloth({"images", "--garment", "tshirt", "--image", (work / "img" / "cloth.exr").string(), "--out",
-                    (work / "back.npy").string()});
+  run = runPixelcloth({"images", "--garment", "tshirt", "--image", (work / "img" / "cloth.exr").string(), "--out",
+                       (work / "back.npy").string()});
   ASSERT_EQ(run.status, 0) << run;
   Eigen::MatrixXf back = core::readNpyMatrixF(work / "back.npy", x.rows(), 3);
   EXPECT_LT((back - x).cwiseAbs().maxCoeff(), 2e-4);
@@ -818,13 +746,13 @@ TEST_F(CliTest, ImagesRefusesWrongVertexCountAndCorruptedExr) {
   fs::path work = dir("work");
   core::writeNpy(work / "few.npy", Eigen::MatrixXf::Zero(10, 3).eval());
   const std::string rows = std::to_string(shirtOffsets().rows());
-  EXPECT_TRUE(refused(pixelcloth({"images", "--garment", "tshirt", "--values", (work / "few.npy").string(), "--out",
-                                  (work / "img").string()}),
+  EXPECT_TRUE(refused(runPixelcloth({"images", "--garment", "tshirt", "--values", (work / "few.npy").string(), "--out",
+                                     (work / "img").string()}),
                       {"few.npy", "(10, 3)", "(" + rows + ", 3)"}));
   EXPECT_TRUE(filesUnder(work / "img").empty());
   writeFile(work / "bad.exr", "v/1 this is not an EXR file");
-  EXPECT_TRUE(refused(pixelcloth({"images", "--garment", "tshirt", "--image", (work / "bad.exr").string(), "--out",
-                                  (work / "v.npy").string()}),
+  EXPECT_TRUE(refused(runPixelcloth({"images", "--garment", "tshirt", "--image", (work / "bad.exr").string(), "--out",
+                                     (work / "v.npy").string()}),
                       {"bad.exr"}));
   EXPECT_FALSE(fs::exists(work / "v.npy"));
 }
@@ -832,12 +760,12 @@ TEST_F(CliTest, ImagesRefusesWrongVertexCountAndCorruptedExr) {
 TEST_F(CliTest, EditShiftWritesExrAndPreview) {
   fs::path work = dir("work");
   core::writeNpy(work / "values.npy", shirtOffsets());
-  ASSERT_EQ(
-      pixelcloth({"images", "--garment", "tshirt", "--values", (work / "values.npy").string(), "--out", work.string()})
-          .status,
-      0);
-  CliRun run = pixelcloth({"edit", "--image", (work / "cloth.exr").string(), "--out", (work / "shifted.exr").string(),
-                           "--shift", "0.01", "0"});
+  ASSERT_EQ(runPixelcloth(
+                {"images", "--garment", "tshirt", "--values", (work / "values.npy").string(), "--out", work.string()})
+                .status,
+            0);
+  CliRun run = runPixelcloth({"edit", "--image", (work / "cloth.exr").string(), "--out",
+                              (work / "shifted.exr").string(), "--shift", "0.01", "0"});
   ASSERT_EQ(run.status, 0) << run;
   EXPECT_TRUE(isPng(work / "shifted.png"));
   core::ExrImage before = core::readExr(work / "cloth.exr"), after = core::readExr(work / "shifted.exr");
@@ -847,11 +775,11 @@ TEST_F(CliTest, EditShiftWritesExrAndPreview) {
       ((after.channel("front.du") - before.channel("front.du")).array() * (1 - inside.array())).abs().maxCoeff(), 0,
       1e-9);
   EXPECT_EQ(after.channel("front.dn"), before.channel("front.dn"));
-  EXPECT_TRUE(refused(pixelcloth({"edit", "--image", (work / "cloth.exr").string(), "--out", (work / "x.exr").string(),
-                                  "--shift", "0.01", "0", "--inflate", "2"}),
+  EXPECT_TRUE(refused(runPixelcloth({"edit", "--image", (work / "cloth.exr").string(), "--out",
+                                     (work / "x.exr").string(), "--shift", "0.01", "0", "--inflate", "2"}),
                       {"exactly one"}));
-  EXPECT_TRUE(refused(pixelcloth({"edit", "--image", (work / "missing.exr").string(), "--out",
-                                  (work / "x.exr").string(), "--inflate", "2"}),
+  EXPECT_TRUE(refused(runPixelcloth({"edit", "--image", (work / "missing.exr").string(), "--out",
+                                     (work / "x.exr").string(), "--inflate", "2"}),
                       {"missing.exr"}));
 }
 
@@ -884,8 +812,9 @@ class CliDatasetTest : public CliBodyTest {
     writeFile(work_ / "poses.csv", csv);
   }
   CliRun import(const fs::path& objs, const fs::path& poses, const fs::path& out) {
-    return pixelcloth({"dataset", "import", "--garment", "necktie", "--objs", objs.string(), "--poses", poses.string(),
-                       "--dressing", (work_ / "dressing").string(), "--out", out.string(), "--quiet"});
+    return runPixelcloth({"dataset", "import", "--garment", "necktie", "--objs", objs.string(), "--poses",
+                          poses.string(), "--dressing", (work_ / "dressing").string(), "--out", out.string(),
+                          "--quiet"});
   }
 
   fs::path work_;
@@ -899,15 +828,15 @@ TEST_F(CliDatasetTest, ImportInfoCheckMergeImages) {
   EXPECT_TRUE(noTemporaries(data));
   EXPECT_FALSE(fs::exists(data / "partial"));
 
-  run = pixelcloth({"dataset", "check", data.string()});
+  run = runPixelcloth({"dataset", "check", data.string()});
   ASSERT_EQ(run.status, 0) << run;
   EXPECT_TRUE(startsWith(run.out, "ok")) << run;
 
-  run = pixelcloth({"dataset", "info", data.string()});
+  run = runPixelcloth({"dataset", "info", data.string()});
   ASSERT_EQ(run.status, 0) << run;
   for (const char* text : {"necktie", "imported", "samples      3", "splits", "penetration", "rejected"})
     EXPECT_NE(run.out.find(text), std::string::npos) << text << run;
-  run = pixelcloth({"dataset", "info", "--json", data.string()});
+  run = runPixelcloth({"dataset", "info", "--json", data.string()});
   ASSERT_EQ(run.status, 0) << run;
   const nlohmann::json info = nlohmann::json::parse(run.out);
   EXPECT_EQ(info["rows"], 3);
@@ -917,39 +846,39 @@ TEST_F(CliDatasetTest, ImportInfoCheckMergeImages) {
                 info["counts"]["test"].get<int>(),
             3);
 
-  run = pixelcloth({"dataset", "merge", "--out", (work_ / "merged").string(), data.string(), "--quiet"});
+  run = runPixelcloth({"dataset", "merge", "--out", (work_ / "merged").string(), data.string(), "--quiet"});
   ASSERT_EQ(run.status, 0) << run;
   EXPECT_EQ(readFile(work_ / "merged" / "offsets.npy"), readFile(data / "offsets.npy"));
-  EXPECT_EQ(pixelcloth({"dataset", "check", (work_ / "merged").string()}).status, 0);
+  EXPECT_EQ(runPixelcloth({"dataset", "check", (work_ / "merged").string()}).status, 0);
 
-  run = pixelcloth({"images", "--dataset", data.string(), "--all", "--out", (work_ / "images").string(), "--quiet"});
+  run = runPixelcloth({"images", "--dataset", data.string(), "--all", "--out", (work_ / "images").string(), "--quiet"});
   ASSERT_EQ(run.status, 0) << run;
   for (int i = 0; i < 3; ++i) {
     EXPECT_TRUE(isPng(work_ / "images" / ("cloth_00000" + std::to_string(i) + ".png")));
     const core::ExrImage exr = core::readExr(work_ / "images" / ("cloth_00000" + std::to_string(i) + ".exr"));
     EXPECT_TRUE(exr.hasChannel("du") || exr.hasChannel("tie.du"));
   }
-  EXPECT_TRUE(
-      refused(pixelcloth({"images", "--dataset", data.string(), "--samples", "7", "--out", (work_ / "more").string()}),
-              {"--samples 7", "0 to 2"}));
+  EXPECT_TRUE(refused(
+      runPixelcloth({"images", "--dataset", data.string(), "--samples", "7", "--out", (work_ / "more").string()}),
+      {"--samples 7", "0 to 2"}));
 
   // A damaged copy: check and merge refuse it, naming the file.
   fs::copy(data, work_ / "damaged", fs::copy_options::recursive);
   std::string bytes = readFile(data / "positions.npy");
   bytes[bytes.size() - 5] ^= 0x40;
   writeFile(work_ / "damaged" / "positions.npy", bytes);
-  EXPECT_TRUE(refused(pixelcloth({"dataset", "check", (work_ / "damaged").string()}), {"positions.npy", "CRC-32"}));
+  EXPECT_TRUE(refused(runPixelcloth({"dataset", "check", (work_ / "damaged").string()}), {"positions.npy", "CRC-32"}));
   EXPECT_TRUE(
-      refused(pixelcloth({"dataset", "merge", "--out", (work_ / "merged2").string(), (work_ / "damaged").string()}),
+      refused(runPixelcloth({"dataset", "merge", "--out", (work_ / "merged2").string(), (work_ / "damaged").string()}),
               {"positions.npy", "CRC-32"}));
   EXPECT_FALSE(fs::exists(work_ / "merged2" / "manifest.json"));
 }
 
 TEST_F(CliDatasetTest, RefusesBadInputsNamingTheFile) {
-  EXPECT_TRUE(refused(pixelcloth({"dataset", "check", (work_ / "nowhere").string()}), {"nowhere", "no such"}));
-  EXPECT_TRUE(refused(pixelcloth({"dataset", "info", (work_ / "objs").string()}), {"manifest.json"}));
-  EXPECT_TRUE(refused(pixelcloth({"dataset", "merge", "--out", (work_ / "m").string(), (work_ / "nowhere").string()}),
-                      {"nowhere"}));
+  EXPECT_TRUE(refused(runPixelcloth({"dataset", "check", (work_ / "nowhere").string()}), {"nowhere", "no such"}));
+  EXPECT_TRUE(refused(runPixelcloth({"dataset", "info", (work_ / "objs").string()}), {"manifest.json"}));
+  EXPECT_TRUE(refused(
+      runPixelcloth({"dataset", "merge", "--out", (work_ / "m").string(), (work_ / "nowhere").string()}), {"nowhere"}));
 
   // An OBJ of another vertex count.
   fs::copy(work_ / "objs", work_ / "objs_few", fs::copy_options::recursive);
@@ -991,12 +920,12 @@ namespace {
 TEST_F(CliBodyTest, GenerateMakesACheckedNecktieDatasetAndResumes) {
   const fs::path out = dir("generate_necktie");
   const fs::path data = out / "tie";
-  const CliRun first = pixelcloth({"generate", "--garment", "necktie", "--count", "3", "--seed", "5", "--body",
-                                   body_.string(), "--out", data.string()});
+  const CliRun first = runPixelcloth({"generate", "--garment", "necktie", "--count", "3", "--seed", "5", "--body",
+                                      body_.string(), "--out", data.string()});
   ASSERT_EQ(first.status, 0) << first;
   for (const char* name : {"manifest.json", "poses.npy", "positions.npy", "offsets.npy", "split.npy"})
     EXPECT_TRUE(fs::exists(data / name)) << name;
-  const CliRun check = pixelcloth({"dataset", "check", data.string()});
+  const CliRun check = runPixelcloth({"dataset", "check", data.string()});
   EXPECT_EQ(check.status, 0) << check;
   EXPECT_NE(check.out.find("ok"), std::string::npos) << check;
   const nlohmann::json manifest = nlohmann::json::parse(readFile(data / "manifest.json"));
@@ -1005,8 +934,8 @@ TEST_F(CliBodyTest, GenerateMakesACheckedNecktieDatasetAndResumes) {
   EXPECT_LE(manifest["stats"]["max_penetration_mm"].get<double>(), 2.0);
   // The same command again finds everything done and changes nothing.
   const std::string before = readFile(data / "positions.npy");
-  const CliRun again = pixelcloth({"generate", "--garment", "necktie", "--count", "3", "--seed", "5", "--body",
-                                   body_.string(), "--out", data.string()});
+  const CliRun again = runPixelcloth({"generate", "--garment", "necktie", "--count", "3", "--seed", "5", "--body",
+                                      body_.string(), "--out", data.string()});
   EXPECT_EQ(again.status, 0) << again;
   EXPECT_NE(again.err.find("0 samples simulated (3 already done"), std::string::npos) << again;
   EXPECT_EQ(readFile(data / "positions.npy"), before);
@@ -1014,17 +943,18 @@ TEST_F(CliBodyTest, GenerateMakesACheckedNecktieDatasetAndResumes) {
 
 TEST_F(CliTest, GenerateRefusesBadSettings) {
   const fs::path out = dir("generate_bad");
-  const CliRun zero = pixelcloth({"generate", "--count", "0", "--out", (out / "a").string()});
+  const CliRun zero = runPixelcloth({"generate", "--count", "0", "--out", (out / "a").string()});
   EXPECT_EQ(zero.status, 2) << zero;
   EXPECT_NE(zero.err.find("--count"), std::string::npos) << zero;
-  const CliRun shard = pixelcloth({"generate", "--count", "4", "--shard", "3/2", "--out", (out / "b").string()});
+  const CliRun shard = runPixelcloth({"generate", "--count", "4", "--shard", "3/2", "--out", (out / "b").string()});
   EXPECT_EQ(shard.status, 2) << shard;
   EXPECT_NE(shard.err.find("3/2"), std::string::npos) << shard;
-  const CliRun garment = pixelcloth({"generate", "--count", "4", "--garment", "skirt", "--out", (out / "c").string()});
+  const CliRun garment =
+      runPixelcloth({"generate", "--count", "4", "--garment", "skirt", "--out", (out / "c").string()});
   EXPECT_EQ(garment.status, 2) << garment;
   EXPECT_NE(garment.err.find("skirt"), std::string::npos) << garment;
   const CliRun body =
-      pixelcloth({"generate", "--count", "4", "--body", (out / "nowhere").string(), "--out", (out / "d").string()});
+      runPixelcloth({"generate", "--count", "4", "--body", (out / "nowhere").string(), "--out", (out / "d").string()});
   EXPECT_EQ(body.status, 2) << body;
   EXPECT_NE(body.err.find("nowhere"), std::string::npos) << body;
 }
@@ -1069,8 +999,8 @@ class CliReconstructTest : public CliDatasetTest {
 
 TEST_F(CliReconstructTest, DatasetFormWritesMetricsForEveryMethodAndTheSplineBeatsLinear) {
   const fs::path out = work_ / "rec";
-  const CliRun run = pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--spacing", "0.08",
-                                 "--out", out.string(), "--quiet"});
+  const CliRun run = runPixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--spacing", "0.08",
+                                    "--out", out.string(), "--quiet"});
   ASSERT_EQ(run.status, 0) << run;
   EXPECT_TRUE(noTemporaries(out));
   const nlohmann::json metrics = nlohmann::json::parse(readFile(out / "metrics.json"));
@@ -1101,36 +1031,37 @@ TEST_F(CliReconstructTest, DatasetFormWritesMetricsForEveryMethodAndTheSplineBea
   EXPECT_TRUE(fs::is_regular_file(out / "sample_000000" / "truth.obj"));
 
   // Captured markers: noisy (fitted softly) and with a third of the curve markers missing; still solved.
-  const CliRun noisy = pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--noise", "0.3",
-                                   "--dropout", "0.3", "--seed", "2", "--out", (work_ / "noisy").string(), "--quiet"});
+  const CliRun noisy =
+      runPixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--noise", "0.3", "--dropout", "0.3",
+                     "--seed", "2", "--out", (work_ / "noisy").string(), "--quiet"});
   ASSERT_EQ(noisy.status, 0) << noisy;
   const nlohmann::json captured = nlohmann::json::parse(readFile(work_ / "noisy" / "metrics.json"));
   EXPECT_DOUBLE_EQ(captured["noise_cm"].get<double>(), 0.3);
   EXPECT_LT(captured["methods"]["spline"]["garment_cm"].get<double>(), 2.0) << captured.dump(2);
 
   // The model from the first run serves another run at its spacing, and is refused at another.
-  const CliRun reused =
-      pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--spacing", "0.08", "--length-model",
-                  (out / "length_model.json").string(), "--out", (work_ / "reused").string(), "--quiet"});
+  const CliRun reused = runPixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--spacing",
+                                       "0.08", "--length-model", (out / "length_model.json").string(), "--out",
+                                       (work_ / "reused").string(), "--quiet"});
   ASSERT_EQ(reused.status, 0) << reused;
   EXPECT_DOUBLE_EQ(nlohmann::json::parse(readFile(work_ / "reused" / "metrics.json"))["methods"]["spline"]["cage_cm"],
                    metrics["methods"]["spline"]["cage_cm"].get<double>());
-  EXPECT_TRUE(refused(pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--length-model",
-                                  (out / "length_model.json").string(), "--out", (work_ / "spacing").string()}),
+  EXPECT_TRUE(refused(runPixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--length-model",
+                                     (out / "length_model.json").string(), "--out", (work_ / "spacing").string()}),
                       {"length_model.json", "0.08 m apart"}));
   EXPECT_TRUE(filesUnder(work_ / "spacing").empty());
 }
 
 TEST_F(CliReconstructTest, MarkersFormRebuildsOneSampleFromItsMarkers) {
   const fs::path markers = work_ / "m.json", pose = work_ / "pose.json", obj = work_ / "tie.obj";
-  CliRun run = pixelcloth({"markers", "--dataset", data_.string(), "--sample", "1", "--pose-out", pose.string(),
-                           "--out", markers.string()});
+  CliRun run = runPixelcloth({"markers", "--dataset", data_.string(), "--sample", "1", "--pose-out", pose.string(),
+                              "--out", markers.string()});
   ASSERT_EQ(run.status, 0) << run;
   const nlohmann::json set = nlohmann::json::parse(readFile(markers));
   EXPECT_EQ(set["garment"], "necktie");
   EXPECT_GT(set["markers"].size(), 8u);
-  run = pixelcloth({"reconstruct", "--markers", markers.string(), "--pose", pose.string(), "--dressing",
-                    (work_ / "dressing").string(), "--out", obj.string()});
+  run = runPixelcloth({"reconstruct", "--markers", markers.string(), "--pose", pose.string(), "--dressing",
+                       (work_ / "dressing").string(), "--out", obj.string()});
   ASSERT_EQ(run.status, 0) << run;
   const core::Mesh rebuilt = core::readMesh(obj), truth = core::readMesh(work_ / "bent" / "tie_1.obj");
   ASSERT_EQ(rebuilt.numVertices(), truth.numVertices());
@@ -1138,27 +1069,27 @@ TEST_F(CliReconstructTest, MarkersFormRebuildsOneSampleFromItsMarkers) {
   EXPECT_TRUE(rebuilt.hasUV());
 
   // With the length model a dataset run fitted (markers at the default spacing, as `markers` placed them).
-  run = pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--meshes", "0", "--out",
-                    (work_ / "fit").string(), "--quiet"});
+  run = runPixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "all", "--meshes", "0", "--out",
+                       (work_ / "fit").string(), "--quiet"});
   ASSERT_EQ(run.status, 0) << run;
   const fs::path withModel = work_ / "tie_model.obj";
-  run = pixelcloth({"reconstruct", "--markers", markers.string(), "--pose", pose.string(), "--dressing",
-                    (work_ / "dressing").string(), "--length-model", (work_ / "fit" / "length_model.json").string(),
-                    "--out", withModel.string()});
+  run = runPixelcloth({"reconstruct", "--markers", markers.string(), "--pose", pose.string(), "--dressing",
+                       (work_ / "dressing").string(), "--length-model", (work_ / "fit" / "length_model.json").string(),
+                       "--out", withModel.string()});
   ASSERT_EQ(run.status, 0) << run;
   EXPECT_LT((core::readMesh(withModel).V - truth.V).rowwise().norm().mean(), 0.01);
 }
 
 TEST_F(CliReconstructTest, RefusesBadInputsNamingTheFileAndWritesNothing) {
   const fs::path markers = work_ / "m.json", pose = work_ / "pose.json";
-  ASSERT_EQ(pixelcloth({"markers", "--dataset", data_.string(), "--sample", "0", "--pose-out", pose.string(), "--out",
-                        markers.string()})
+  ASSERT_EQ(runPixelcloth({"markers", "--dataset", data_.string(), "--sample", "0", "--pose-out", pose.string(),
+                           "--out", markers.string()})
                 .status,
             0);
   const std::string dressing = (work_ / "dressing").string();
   auto reconstruct = [&](const fs::path& m, const fs::path& out) {
-    return pixelcloth({"reconstruct", "--markers", m.string(), "--pose", pose.string(), "--dressing", dressing, "--out",
-                       out.string()});
+    return runPixelcloth({"reconstruct", "--markers", m.string(), "--pose", pose.string(), "--dressing", dressing,
+                          "--out", out.string()});
   };
   EXPECT_TRUE(refused(reconstruct(work_ / "missing.json", work_ / "a.obj"), {"missing.json"}));
   EXPECT_FALSE(fs::exists(work_ / "a.obj"));
@@ -1190,8 +1121,8 @@ TEST_F(CliReconstructTest, RefusesBadInputsNamingTheFileAndWritesNothing) {
 
   // A length model that is cut short, or for another garment.
   auto withModel = [&](const fs::path& model, const fs::path& out) {
-    return pixelcloth({"reconstruct", "--markers", markers.string(), "--pose", pose.string(), "--dressing", dressing,
-                       "--length-model", model.string(), "--out", out.string()});
+    return runPixelcloth({"reconstruct", "--markers", markers.string(), "--pose", pose.string(), "--dressing", dressing,
+                          "--length-model", model.string(), "--out", out.string()});
   };
   writeFile(work_ / "cut_model.json", R"({"format": "pixelcloth.length_model", "garment": "necktie", "cur)");
   EXPECT_TRUE(refused(withModel(work_ / "cut_model.json", work_ / "f.obj"), {"cut_model.json"}));
@@ -1202,21 +1133,21 @@ TEST_F(CliReconstructTest, RefusesBadInputsNamingTheFileAndWritesNothing) {
   EXPECT_FALSE(fs::exists(work_ / "f.obj") || fs::exists(work_ / "g.obj"));
 
   // T-shirt markers for a necktie dressing: the embedding does not fit.
-  ASSERT_EQ(pixelcloth({"markers", "--garment", "tshirt", "--out", (work_ / "shirt_def.json").string()}).status, 0);
+  ASSERT_EQ(runPixelcloth({"markers", "--garment", "tshirt", "--out", (work_ / "shirt_def.json").string()}).status, 0);
   EXPECT_TRUE(refused(reconstruct(work_ / "shirt_def.json", work_ / "e.obj"), {"shirt_def.json", "no position"}));
   EXPECT_FALSE(fs::exists(work_ / "e.obj"));
 
   // Dataset form: an unknown split, a folder that is not a dataset, a clearance of a metre.
-  EXPECT_TRUE(refused(pixelcloth({"reconstruct", "--dataset", data_.string(), "--body-clearance", "1", "--out",
-                                  (work_ / "r3").string()}),
+  EXPECT_TRUE(refused(runPixelcloth({"reconstruct", "--dataset", data_.string(), "--body-clearance", "1", "--out",
+                                     (work_ / "r3").string()}),
                       {"clearance"}));
   EXPECT_TRUE(filesUnder(work_ / "r3").empty());
-  EXPECT_TRUE(refused(pixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "validation", "--out",
-                                  (work_ / "r1").string()}),
+  EXPECT_TRUE(refused(runPixelcloth({"reconstruct", "--dataset", data_.string(), "--split", "validation", "--out",
+                                     (work_ / "r1").string()}),
                       {"validation"}));
-  EXPECT_TRUE(
-      refused(pixelcloth({"reconstruct", "--dataset", (work_ / "nowhere").string(), "--out", (work_ / "r2").string()}),
-              {"nowhere"}));
+  EXPECT_TRUE(refused(
+      runPixelcloth({"reconstruct", "--dataset", (work_ / "nowhere").string(), "--out", (work_ / "r2").string()}),
+      {"nowhere"}));
   EXPECT_TRUE(filesUnder(work_ / "r1").empty());
   EXPECT_TRUE(filesUnder(work_ / "r2").empty());
 }

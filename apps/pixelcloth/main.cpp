@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerDataset(app);
   pixelcloth::apps::registerGenerate(app);
   pixelcloth::apps::registerReconstruct(app);
+  pixelcloth::apps::registerModel(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
 
   try {

@@ -21,5 +21,7 @@ void registerDataset(CLI::App& app);
 void registerGenerate(CLI::App& app);
 /// `markers` and `reconstruct` (issue 5).
 void registerReconstruct(CLI::App& app);
+/// `model` (learn/): a network's size.
+void registerModel(CLI::App& app);
 
 }  // namespace pixelcloth::apps

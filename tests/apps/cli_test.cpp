@@ -231,6 +231,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
       {"reconstruct",
        {"--markers", "--pose", "--body", "--dressing", "--method", "--dataset", "--split", "--noise", "--dropout",
         "--spacing", "--rest-lengths", "--out", "--quiet"}},
+      {"model", {"--arch", "--width", "--inputs", "--garment", "--values", "--components", "--summary"}},
   };
   for (const auto& [verb, options] : verbs) {
     SCOPED_TRACE(verb);

@@ -1,0 +1,370 @@
+// The paper's decoders and the fully connected baselines: one layer plan per architecture, from which both the
+// LibTorch module and the summary (parameters, shapes, FLOPs) are made, so the two cannot disagree.
+#include "pixelcloth/learn/model.h"
+
+#include <torch/torch.h>
+
+#include <cmath>
+
+#include "pixelcloth/body/skeleton.h"
+#include "pixelcloth/core/enum_names.h"
+#include "pixelcloth/core/error.h"
+
+namespace pixelcloth::learn {
+
+namespace {
+
+const core::EnumNames<Architecture, 5> kArchitectures{"architecture",
+                                                      {{{Architecture::Whole, "whole"},
+                                                        {Architecture::Patch, "patch"},
+                                                        {Architecture::Necktie, "necktie"},
+                                                        {Architecture::FullyConnected, "fc"},
+                                                        {Architecture::FullyConnectedPca, "fc-pca"}}}};
+
+/// One step of a network: what it is, its sizes and the shape of one sample after it.
+struct Layer {
+  enum class Kind { Linear, Unflatten, ConvTranspose, Conv, BatchNorm, ReLU, PcaDecode } kind;
+  std::int64_t in = 0, out = 0;  ///< features or channels
+  std::int64_t kernel = 0, stride = 1, padding = 0;
+  std::vector<std::int64_t> shape;  ///< one sample's output shape
+};
+
+/// A channel count scaled by the width multiplier, at least 1.
+std::int64_t scaled(double channels, double width) { return std::max<std::int64_t>(1, std::llround(channels * width)); }
+
+/// Builds the plan of layers; `shape` tracks one sample's shape.
+class Plan {
+ public:
+  explicit Plan(std::int64_t inputs) : shape_{inputs} {}
+  void linear(std::int64_t out) { add({Layer::Kind::Linear, shape_[0], out, 0, 1, 0, {out}}); }
+  void unflatten(std::vector<std::int64_t> shape) { add({Layer::Kind::Unflatten, 0, 0, 0, 1, 0, std::move(shape)}); }
+  void convTranspose(std::int64_t out, std::int64_t kernel, std::int64_t stride, std::int64_t padding) {
+    const std::int64_t h = (shape_[1] - 1) * stride - 2 * padding + kernel,
+                       w = (shape_[2] - 1) * stride - 2 * padding + kernel;
+    add({Layer::Kind::ConvTranspose, shape_[0], out, kernel, stride, padding, {out, h, w}});
+  }
+  void conv(std::int64_t out, std::int64_t kernel) {
+    add({Layer::Kind::Conv, shape_[0], out, kernel, 1, kernel / 2, {out, shape_[1], shape_[2]}});
+  }
+  void batchNormRelu() {
+    add({Layer::Kind::BatchNorm, shape_[0], shape_[0], 0, 1, 0, shape_});
+    add({Layer::Kind::ReLU, 0, 0, 0, 1, 0, shape_});
+  }
+  void relu() { add({Layer::Kind::ReLU, 0, 0, 0, 1, 0, shape_}); }
+  void pcaDecode(std::int64_t values) { add({Layer::Kind::PcaDecode, shape_[0], values, 0, 1, 0, {values}}); }
+  /// (4x4 stride-2 transposed convolution, BatchNorm, ReLU) blocks, channels halving from `nominal` (before the width
+  /// multiplier), until the map is `height` rows high.
+  void upsampleTo(std::int64_t height, double nominal, double width) {
+    while (shape_[1] < height) {
+      nominal /= 2;
+      convTranspose(scaled(nominal, width), 4, 2, 1);
+      batchNormRelu();
+    }
+  }
+  const std::vector<Layer>& layers() const { return layers_; }
+
+ private:
+  void add(Layer layer) {
+    shape_ = layer.shape;
+    layers_.push_back(std::move(layer));
+  }
+  std::vector<std::int64_t> shape_;
+  std::vector<Layer> layers_;
+};
+
+/// The appendix's networks, DESIGN.md "Networks".
+std::vector<Layer> planOf(const ModelSpec& spec) {
+  const double w = spec.width;
+  Plan plan(spec.inputs());
+  switch (spec.architecture) {
+    case Architecture::Whole: {  // 90 -> 8x8x384 -> ... -> 256x256x12 -> 6
+      plan.unflatten({spec.inputs(), 1, 1});
+      plan.convTranspose(scaled(384, w), 8, 1, 0);
+      plan.batchNormRelu();
+      plan.upsampleTo(256, 384, w);
+      plan.conv(6, 3);
+      break;
+    }
+    case Architecture::Patch: {  // 90 -> 5x5x512 -> ... -> 160x160x16 -> 3
+      const std::int64_t c = scaled(512, w);
+      plan.linear(5 * 5 * c);
+      plan.unflatten({c, 5, 5});
+      plan.batchNormRelu();
+      plan.upsampleTo(160, 512, w);
+      plan.conv(3, 3);
+      break;
+    }
+    case Architecture::Necktie: {  // 36 -> 128 -> 8x32x64 -> ... -> 64x256x8 -> 3
+      plan.linear(scaled(128, w));
+      plan.relu();
+      const std::int64_t c = scaled(64, w);
+      plan.linear(8 * 32 * c);
+      plan.unflatten({c, 8, 32});
+      plan.batchNormRelu();
+      plan.upsampleTo(64, 64, w);
+      plan.conv(3, 3);
+      break;
+    }
+    case Architecture::FullyConnected:
+    case Architecture::FullyConnectedPca: {  // 2 x 256 ReLU -> values, or -> 128 coefficients -> PCA basis
+      const std::int64_t hidden = scaled(256, w);
+      plan.linear(hidden);
+      plan.relu();
+      plan.linear(hidden);
+      plan.relu();
+      if (spec.architecture == Architecture::FullyConnected) {
+        plan.linear(spec.outputValues);
+      } else {
+        plan.linear(spec.pcaComponents);
+        plan.pcaDecode(spec.outputValues);
+      }
+      break;
+    }
+  }
+  return plan.layers();
+}
+
+std::int64_t product(const std::vector<std::int64_t>& shape) {
+  std::int64_t n = 1;
+  for (std::int64_t d : shape) n *= d;
+  return n;
+}
+
+LayerSummary summaryOf(const Layer& l, const std::vector<std::int64_t>& input) {
+  LayerSummary s;
+  s.output = l.shape;
+  const std::string k = std::to_string(l.kernel) + "x" + std::to_string(l.kernel);
+  switch (l.kind) {
+    case Layer::Kind::Linear:
+      s.name = "linear " + std::to_string(l.in) + "->" + std::to_string(l.out);
+      s.parameters = l.in * l.out + l.out;
+      s.flops = 2.0 * l.in * l.out;
+      break;
+    case Layer::Kind::Unflatten:
+      s.name = "reshape";
+      break;
+    case Layer::Kind::ConvTranspose:
+      s.name = "conv_transpose " + std::to_string(l.in) + "->" + std::to_string(l.out) + " " + k + " s" +
+               std::to_string(l.stride);
+      s.parameters = l.in * l.out * l.kernel * l.kernel + l.out;
+      s.flops = 2.0 * l.in * l.out * l.kernel * l.kernel * input[1] * input[2];  // every input pixel scatters a kernel
+      break;
+    case Layer::Kind::Conv:
+      s.name = "conv " + std::to_string(l.in) + "->" + std::to_string(l.out) + " " + k;
+      s.parameters = l.in * l.out * l.kernel * l.kernel + l.out;
+      s.flops = 2.0 * l.in * l.out * l.kernel * l.kernel * l.shape[1] * l.shape[2];
+      break;
+    case Layer::Kind::BatchNorm:
+      s.name = "batch_norm " + std::to_string(l.out);
+      s.parameters = 2 * l.out;
+      s.flops = 2.0 * product(l.shape);
+      break;
+    case Layer::Kind::ReLU:
+      s.name = "relu";
+      break;
+    case Layer::Kind::PcaDecode:
+      s.name = "pca_decode " + std::to_string(l.in) + "->" + std::to_string(l.out) + " (fixed basis)";
+      s.flops = 2.0 * l.in * l.out;
+      break;
+  }
+  return s;
+}
+
+/// mean + coefficients x components, a fixed (non-trainable) basis.
+struct PcaDecodeImpl : torch::nn::Module {
+  PcaDecodeImpl(std::int64_t components, std::int64_t values) {
+    mean = register_buffer("mean", torch::zeros({values}));
+    basis = register_buffer("components", torch::zeros({components, values}));
+  }
+  torch::Tensor forward(const torch::Tensor& coefficients) { return mean + coefficients.matmul(basis); }
+  torch::Tensor mean, basis;
+};
+TORCH_MODULE(PcaDecode);
+
+torch::nn::Sequential buildNetwork(const std::vector<Layer>& layers) {
+  torch::nn::Sequential net;
+  for (const Layer& l : layers) {
+    switch (l.kind) {
+      case Layer::Kind::Linear:
+        net->push_back(torch::nn::Linear(l.in, l.out));
+        break;
+      case Layer::Kind::Unflatten:
+        net->push_back(torch::nn::Unflatten(torch::nn::UnflattenOptions(1, l.shape)));
+        break;
+      case Layer::Kind::ConvTranspose:
+        net->push_back(torch::nn::ConvTranspose2d(
+            torch::nn::ConvTranspose2dOptions(l.in, l.out, l.kernel).stride(l.stride).padding(l.padding)));
+        break;
+      case Layer::Kind::Conv:
+        net->push_back(torch::nn::Conv2d(torch::nn::Conv2dOptions(l.in, l.out, l.kernel).padding(l.padding)));
+        break;
+      case Layer::Kind::BatchNorm:
+        net->push_back(torch::nn::BatchNorm2d(l.out));
+        break;
+      case Layer::Kind::ReLU:
+        net->push_back(torch::nn::ReLU());
+        break;
+      case Layer::Kind::PcaDecode:
+        net->push_back(PcaDecode(l.in, l.out));
+        break;
+    }
+  }
+  return net;
+}
+
+/// Row-major float tensor of an Eigen matrix (copied).
+torch::Tensor toTensor(const Eigen::MatrixXf& m) {
+  const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = m;
+  return torch::from_blob(const_cast<float*>(rows.data()), {rows.rows(), rows.cols()}, torch::kFloat32).clone();
+}
+
+Eigen::MatrixXf toEigen(const torch::Tensor& t) {
+  const torch::Tensor c = t.to(torch::kCPU).contiguous().reshape({t.size(0), -1});
+  Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> rows(c.data_ptr<float>(),
+                                                                                               c.size(0), c.size(1));
+  return rows;
+}
+
+}  // namespace
+
+const char* architectureName(Architecture architecture) { return kArchitectures.name(architecture); }
+
+Architecture architectureFromName(const std::string& name, const std::string& context) {
+  return kArchitectures.fromName(name, context);
+}
+
+void ModelSpec::validate() const {
+  PIXELCLOTH_CHECK(std::isfinite(width) && width > 0 && width <= 4, "model: width " << width << ", expected (0, 4]");
+  PIXELCLOTH_CHECK(inputSize >= 0 && inputSize <= 100000, "model: input size " << inputSize << ", expected >= 0");
+  const bool baseline = architecture == Architecture::FullyConnected || architecture == Architecture::FullyConnectedPca;
+  PIXELCLOTH_CHECK(!baseline || outputValues > 0,
+                   "model: the " << architectureName(architecture) << " baseline needs its output size (values per "
+                                 << "sample, 3 per garment vertex), got " << outputValues);
+  PIXELCLOTH_CHECK(
+      architecture != Architecture::FullyConnectedPca || (pcaComponents >= 1 && pcaComponents <= outputValues),
+      "model: " << pcaComponents << " PCA components for " << outputValues << " output values, expected 1 to "
+                << outputValues);
+}
+
+int ModelSpec::inputs() const {
+  if (inputSize > 0) return inputSize;
+  return architecture == Architecture::Necktie ? body::kNecktiePoseSize : body::kPoseSize;
+}
+
+std::vector<std::int64_t> ModelSpec::outputShape() const {
+  validate();
+  return planOf(*this).back().shape;
+}
+
+nlohmann::json ModelSummary::toJson() const {
+  nlohmann::json layerList = nlohmann::json::array();
+  for (const LayerSummary& l : layers)
+    layerList.push_back({{"name", l.name}, {"output", l.output}, {"parameters", l.parameters}, {"flops", l.flops}});
+  return {{"architecture", architectureName(spec.architecture)},
+          {"width", spec.width},
+          {"parameters", parameters},
+          {"input", input},
+          {"output", output},
+          {"gflop_forward", gflopForward},
+          {"layers", layerList}};
+}
+
+ModelSummary summarize(const ModelSpec& spec) {
+  spec.validate();
+  ModelSummary summary;
+  summary.spec = spec;
+  summary.input = {spec.inputs()};
+  std::vector<std::int64_t> shape = summary.input;
+  double flops = 0;
+  for (const Layer& layer : planOf(spec)) {
+    summary.layers.push_back(summaryOf(layer, shape));
+    summary.parameters += summary.layers.back().parameters;
+    flops += summary.layers.back().flops;
+    shape = layer.shape;
+  }
+  summary.output = shape;
+  summary.gflopForward = flops * 1e-9;
+  return summary;
+}
+
+struct Model::Impl {
+  ModelSpec spec;
+  torch::nn::Sequential net;
+  torch::Device device{torch::kCPU};
+};
+
+Model::Model(const ModelSpec& spec, std::uint64_t seed) : impl_(std::make_unique<Impl>()) {
+  spec.validate();
+  impl_->spec = spec;
+  torch::manual_seed(seed);
+  impl_->net = buildNetwork(planOf(spec));
+  impl_->net->to(impl_->device);
+}
+
+Model::~Model() = default;
+Model::Model(Model&&) noexcept = default;
+Model& Model::operator=(Model&&) noexcept = default;
+
+const ModelSpec& Model::spec() const { return impl_->spec; }
+
+std::int64_t Model::parameters() const {
+  std::int64_t n = 0;
+  for (const torch::Tensor& p : impl_->net->parameters()) n += p.numel();
+  return n;
+}
+
+Eigen::MatrixXf Model::forward(const Eigen::MatrixXf& inputs) const {
+  PIXELCLOTH_CHECK(
+      inputs.cols() == impl_->spec.inputs() && inputs.rows() > 0,
+      "model: " << inputs.rows() << " x " << inputs.cols() << " inputs, expected batch x " << impl_->spec.inputs());
+  PIXELCLOTH_CHECK(inputs.allFinite(), "model: the inputs are not all finite");
+  torch::NoGradGuard noGrad;
+  impl_->net->eval();
+  return toEigen(impl_->net->forward(toTensor(inputs).to(impl_->device)));
+}
+
+void Model::setPcaBasis(const Eigen::VectorXf& mean, const Eigen::MatrixXf& components) {
+  const ModelSpec& s = impl_->spec;
+  PIXELCLOTH_CHECK(s.architecture == Architecture::FullyConnectedPca,
+                   "model: a PCA basis is for fc-pca, not " << architectureName(s.architecture));
+  PIXELCLOTH_CHECK(
+      mean.size() == s.outputValues && components.rows() == s.pcaComponents && components.cols() == s.outputValues,
+      "model: a PCA basis of " << components.rows() << " x " << components.cols() << " (mean " << mean.size()
+                               << "), expected " << s.pcaComponents << " x " << s.outputValues);
+  auto decode = impl_->net->ptr(impl_->net->size() - 1)->as<PcaDecodeImpl>();
+  PIXELCLOTH_ASSERT(decode != nullptr, "fc-pca network without its PCA layer");
+  torch::NoGradGuard noGrad;
+  decode->mean.copy_(toTensor(mean.transpose()).reshape({-1}));
+  decode->basis.copy_(toTensor(components));
+}
+
+Eigen::MatrixXf PcaBasis::project(const Eigen::MatrixXf& data) const {
+  PIXELCLOTH_CHECK(data.cols() == mean.size(), "pca: " << data.cols() << " values per row, expected " << mean.size());
+  return (data.rowwise() - mean.transpose()) * components.transpose();
+}
+
+Eigen::MatrixXf PcaBasis::reconstruct(const Eigen::MatrixXf& coefficients) const {
+  PIXELCLOTH_CHECK(coefficients.cols() == components.rows(),
+                   "pca: " << coefficients.cols() << " coefficients per row, expected " << components.rows());
+  return (coefficients * components).rowwise() + mean.transpose();
+}
+
+PcaBasis fitPca(const Eigen::MatrixXf& data, int components) {
+  const std::int64_t n = data.rows(), m = data.cols();
+  PIXELCLOTH_CHECK(n >= 1 && m >= 1 && data.allFinite(), "pca: " << n << " x " << m << " data, expected finite rows");
+  PIXELCLOTH_CHECK(components >= 1 && components <= std::min(n, m), "pca: " << components << " components of " << n
+                                                                            << " x " << m << " data, expected 1 to "
+                                                                            << std::min(n, m));
+  torch::NoGradGuard noGrad;
+  const torch::Tensor x = toTensor(data).to(torch::kFloat64);
+  const torch::Tensor mean = x.mean(0);
+  const auto [u, s, vh] = torch::linalg::svd(x - mean, /*full_matrices=*/false, c10::nullopt);
+  PcaBasis basis;
+  basis.mean = toEigen(mean.reshape({1, -1}).to(torch::kFloat32)).transpose();
+  basis.components = toEigen(vh.slice(0, 0, components).to(torch::kFloat32));
+  const torch::Tensor variance = s.slice(0, 0, components).pow(2) / std::max<std::int64_t>(n - 1, 1);
+  basis.variance = toEigen(variance.reshape({1, -1}).to(torch::kFloat32)).transpose();
+  return basis;
+}
+
+}  // namespace pixelcloth::learn

@@ -9,6 +9,7 @@
 #include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
+#include "tensor.h"
 
 namespace pixelcloth::learn {
 
@@ -210,19 +211,6 @@ torch::nn::Sequential buildNetwork(const std::vector<Layer>& layers) {
     }
   }
   return net;
-}
-
-/// Row-major float tensor of an Eigen matrix (copied).
-torch::Tensor toTensor(const Eigen::MatrixXf& m) {
-  const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = m;
-  return torch::from_blob(const_cast<float*>(rows.data()), {rows.rows(), rows.cols()}, torch::kFloat32).clone();
-}
-
-Eigen::MatrixXf toEigen(const torch::Tensor& t) {
-  const torch::Tensor c = t.to(torch::kCPU).contiguous().reshape({t.size(0), -1});
-  Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> rows(c.data_ptr<float>(),
-                                                                                               c.size(0), c.size(1));
-  return rows;
 }
 
 }  // namespace

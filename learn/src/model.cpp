@@ -62,6 +62,16 @@ class Plan {
       batchNormRelu();
     }
   }
+  /// A linear layer to a rows x columns map of `nominal` channels, BatchNorm, ReLU, the upsampling blocks until the
+  /// map is `height` rows high, and a 3x3 convolution to the 3 offset channels.
+  void mapDecoder(std::int64_t rows, std::int64_t columns, double nominal, double width, std::int64_t height) {
+    const std::int64_t c = scaled(nominal, width);
+    linear(rows * columns * c);
+    unflatten({c, rows, columns});
+    batchNormRelu();
+    upsampleTo(height, nominal, width);
+    conv(3, 3);
+  }
   const std::vector<Layer>& layers() const { return layers_; }
 
  private:
@@ -86,26 +96,14 @@ std::vector<Layer> planOf(const ModelSpec& spec) {
       plan.conv(6, 3);
       break;
     }
-    case Architecture::Patch: {  // 90 -> 5x5x512 -> ... -> 160x160x16 -> 3
-      const std::int64_t c = scaled(512, w);
-      plan.linear(5 * 5 * c);
-      plan.unflatten({c, 5, 5});
-      plan.batchNormRelu();
-      plan.upsampleTo(160, 512, w);
-      plan.conv(3, 3);
+    case Architecture::Patch:  // 90 -> 5x5x512 -> ... -> 160x160x16 -> 3
+      plan.mapDecoder(5, 5, 512, w, 160);
       break;
-    }
-    case Architecture::Necktie: {  // 36 -> 128 -> 8x32x64 -> ... -> 64x256x8 -> 3
+    case Architecture::Necktie:  // 36 -> 128 -> 8x32x64 -> ... -> 64x256x8 -> 3
       plan.linear(scaled(128, w));
       plan.relu();
-      const std::int64_t c = scaled(64, w);
-      plan.linear(8 * 32 * c);
-      plan.unflatten({c, 8, 32});
-      plan.batchNormRelu();
-      plan.upsampleTo(64, 64, w);
-      plan.conv(3, 3);
+      plan.mapDecoder(8, 32, 64, w, 64);
       break;
-    }
     case Architecture::FullyConnected:
     case Architecture::FullyConnectedPca: {  // 2 x 256 ReLU -> values, or -> 128 coefficients -> PCA basis
       const std::int64_t hidden = scaled(256, w);

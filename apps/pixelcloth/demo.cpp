@@ -32,6 +32,7 @@ void runDemo(const DemoArgs& args) {
   viz::demoReconstruction(report, body);
   viz::demoNecktieDataset(report, body, demo);
   viz::demoPoseSampling(report, body, demo);
+  viz::demoNetworks(report);
   report.write();
 }
 }  // namespace

@@ -1,6 +1,7 @@
 // The demo's sections: everything that exists, end to end, on the built-in body and garments.
 #include "pixelcloth/viz/demo.h"
 
+#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -15,6 +16,7 @@
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/garment.h"
+#include "pixelcloth/learn/model.h"
 #include "pixelcloth/patches/cloth_image.h"
 #include "pixelcloth/patches/edit.h"
 #include "pixelcloth/patches/garment_fill.h"
@@ -455,6 +457,48 @@ void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions&
             text.str() + ".",
         {"poses/joint_histograms.png"});
   }
+}
+
+void demoNetworks(Report& report) {
+  std::ostringstream text;
+  text << std::fixed;
+  report.step("networks: the paper's decoders and the fully connected baselines", [&] {
+    const int values = 3 * makeTShirt().mesh.numVertices();
+    for (learn::Architecture architecture :
+         {learn::Architecture::Whole, learn::Architecture::Patch, learn::Architecture::Necktie,
+          learn::Architecture::FullyConnected, learn::Architecture::FullyConnectedPca}) {
+      for (double width : {1.0, 0.25}) {
+        learn::ModelSpec spec;
+        spec.architecture = architecture;
+        spec.width = width;
+        spec.outputValues = values;
+        const learn::ModelSummary summary = learn::summarize(spec);
+        nlohmann::json entry = summary.toJson();
+        entry.erase("layers");
+        if (width == 0.25) {
+          // One forward pass of one sample (after a warm-up), inference mode, on this machine's cores.
+          const learn::Model model(spec);
+          const Eigen::MatrixXf pose = Eigen::MatrixXf::Zero(1, spec.inputs());
+          model.forward(pose);
+          const auto start = std::chrono::steady_clock::now();
+          model.forward(pose);
+          entry["forward_ms"] = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        }
+        report.json()["networks"].push_back(entry);
+        text << learn::architectureName(architecture) << (width == 1.0 ? "" : " (width 0.25)") << ": "
+             << std::setprecision(2) << summary.parameters / 1e6 << "M parameters, " << std::setprecision(3)
+             << summary.gflopForward << " GFLOP; ";
+      }
+    }
+  });
+  report.section("Networks",
+                 "The learned half begins with its networks (learn/; their training is not built yet). Per sample, the "
+                 "whole-garment decoder maps the 90-float pose to a 256 x 256 x 6 cloth image of both sides, a patch "
+                 "decoder to a 160 x 160 x 3 patch crop, the necktie decoder its 36 floats to 64 x 256 x 3; the "
+                 "fully connected baselines map the pose to the T-shirt's per-vertex values, directly or through 128 "
+                 "PCA coefficients: " +
+                     text.str() + "the quarter-width forward times are in report.json (networks).",
+                 {});
 }
 
 }  // namespace pixelcloth::viz

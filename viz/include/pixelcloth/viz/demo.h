@@ -63,4 +63,8 @@ void demoNecktieDataset(Report& report, const body::Body& body, const DemoOption
 /// `demo.filterPoses` sampler draws simulated on the T-shirt; joint-angle histograms before and after filtering.
 void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions& demo);
 
+/// The paper's decoders and the fully connected baselines at full and quarter width: parameters, shapes and forward
+/// cost, and one forward pass of each quarter-width decoder timed on this machine.
+void demoNetworks(Report& report);
+
 }  // namespace pixelcloth::viz

@@ -99,10 +99,10 @@ std::vector<Layer> planOf(const ModelSpec& spec) {
     case Architecture::Patch:  // 90 -> 5x5x512 -> ... -> 160x160x16 -> 3
       plan.mapDecoder(5, 5, 512, w, 160);
       break;
-    case Architecture::Necktie:  // 36 -> 128 -> 8x32x64 -> ... -> 64x256x8 -> 3
+    case Architecture::Necktie:  // 36 -> 128 -> 32x8x64 -> ... -> 256x64x8 -> 3 (the tie hangs: 256 rows, 64 columns)
       plan.linear(scaled(128, w));
       plan.relu();
-      plan.mapDecoder(8, 32, 64, w, 64);
+      plan.mapDecoder(32, 8, 64, w, 256);
       break;
     case Architecture::FullyConnected:
     case Architecture::FullyConnectedPca: {  // 2 x 256 ReLU -> values, or -> 128 coefficients -> PCA basis

@@ -33,7 +33,7 @@ TEST(Model, ParameterCountsAreThePapers) {
   EXPECT_EQ(tie.parameters, 2161795);
   EXPECT_EQ(whole.output, (std::vector<std::int64_t>{6, 256, 256}));
   EXPECT_EQ(patch.output, (std::vector<std::int64_t>{3, 160, 160}));
-  EXPECT_EQ(tie.output, (std::vector<std::int64_t>{3, 64, 256}));
+  EXPECT_EQ(tie.output, (std::vector<std::int64_t>{3, 256, 64}));  // the cloth image of the hanging tie
   EXPECT_EQ(whole.input, (std::vector<std::int64_t>{90}));
   EXPECT_EQ(tie.input, (std::vector<std::int64_t>{36}));
 }

@@ -494,7 +494,8 @@ void demoNetworks(Report& report) {
   report.section("Networks",
                  "The learned half begins with its networks (learn/; their training is not built yet). Per sample, the "
                  "whole-garment decoder maps the 90-float pose to a 256 x 256 x 6 cloth image of both sides, a patch "
-                 "decoder to a 160 x 160 x 3 patch crop, the necktie decoder its 36 floats to 64 x 256 x 3; the "
+                 "decoder to a 160 x 160 x 3 patch crop, the necktie decoder its 36 floats to a 64-wide, 256-tall "
+                 "image of 3 channels; the "
                  "fully connected baselines map the pose to the T-shirt's per-vertex values, directly or through 128 "
                  "PCA coefficients: " +
                      text.str() + "the quarter-width forward times are in report.json (networks).",

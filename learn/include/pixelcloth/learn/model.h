@@ -13,8 +13,8 @@
 namespace pixelcloth::learn {
 
 /// Which network: the whole-garment decoder (pose -> 256 x 256 x 6, both sides), a patch decoder (pose -> 160 x 160
-/// x 3, one enlarged patch crop), the necktie decoder (36 -> 64 x 256 x 3), or a fully connected baseline to
-/// per-vertex values, directly or through PCA coefficients.
+/// x 3, one enlarged patch crop), the necktie decoder (36 -> 3 x 256 x 64: 256 rows as the tie hangs in its cloth
+/// image, 64 columns), or a fully connected baseline to per-vertex values, directly or through PCA coefficients.
 enum class Architecture { Whole, Patch, Necktie, FullyConnected, FullyConnectedPca };
 
 /// "whole", "patch", "necktie", "fc", "fc-pca".

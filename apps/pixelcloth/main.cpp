@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerGenerate(app);
   pixelcloth::apps::registerReconstruct(app);
   pixelcloth::apps::registerModel(app);
+  pixelcloth::apps::registerTrain(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
 
   try {

@@ -21,7 +21,8 @@ void registerDataset(CLI::App& app);
 void registerGenerate(CLI::App& app);
 /// `markers` and `reconstruct` (issue 5).
 void registerReconstruct(CLI::App& app);
-/// `model` (learn/): a network's size.
+/// `model` and `train` (learn/): a network's size; training an image decoder.
 void registerModel(CLI::App& app);
+void registerTrain(CLI::App& app);
 
 }  // namespace pixelcloth::apps

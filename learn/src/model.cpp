@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "model_impl.h"
 #include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
@@ -272,12 +273,6 @@ ModelSummary summarize(const ModelSpec& spec) {
   summary.gflopForward = flops * 1e-9;
   return summary;
 }
-
-struct Model::Impl {
-  ModelSpec spec;
-  torch::nn::Sequential net;
-  torch::Device device{torch::kCPU};
-};
 
 Model::Model(const ModelSpec& spec, std::uint64_t seed) : impl_(std::make_unique<Impl>()) {
   spec.validate();

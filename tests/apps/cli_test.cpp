@@ -232,6 +232,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
        {"--markers", "--pose", "--body", "--dressing", "--method", "--dataset", "--split", "--noise", "--dropout",
         "--spacing", "--rest-lengths", "--out", "--quiet"}},
       {"model", {"--arch", "--width", "--inputs", "--garment", "--values", "--components", "--summary"}},
+      {"train", {"--dataset", "--model", "--width", "--loss", "--epochs", "--batch", "--lr", "--seed", "--out"}},
   };
   for (const auto& [verb, options] : verbs) {
     SCOPED_TRACE(verb);
@@ -933,6 +934,17 @@ TEST_F(CliBodyTest, GenerateMakesACheckedNecktieDatasetAndResumes) {
   EXPECT_EQ(manifest["pose_size"], 36);
   EXPECT_EQ(manifest["stats"]["accepted"], 3);
   EXPECT_LE(manifest["stats"]["max_penetration_mm"].get<double>(), 2.0);
+  // A necktie decoder learns from it; a whole-garment one does not fit the tie's images, and says so.
+  const fs::path model = out / "model";
+  const CliRun train = runPixelcloth({"train", "--dataset", data.string(), "--model", "necktie", "--width", "0.125",
+                                      "--epochs", "2", "--batch", "2", "--out", model.string(), "--quiet"});
+  ASSERT_EQ(train.status, 0) << train;
+  for (const char* name : {"model.pt", "model.json", "log.csv"}) EXPECT_TRUE(fs::exists(model / name)) << name;
+  EXPECT_EQ(nlohmann::json::parse(readFile(model / "model.json"))["architecture"], "necktie");
+  EXPECT_TRUE(refused(runPixelcloth({"train", "--dataset", data.string(), "--model", "whole", "--epochs", "1", "--out",
+                                     (out / "whole").string()}),
+                      {"(6, 256, 256)", "necktie"}));
+  EXPECT_FALSE(fs::exists(out / "whole" / "model.pt"));
   // The same command again finds everything done and changes nothing.
   const std::string before = readFile(data / "positions.npy");
   const CliRun again = runPixelcloth({"generate", "--garment", "necktie", "--count", "3", "--seed", "5", "--body",

@@ -82,6 +82,7 @@ class Model {
   void setPcaBasis(const Eigen::VectorXf& mean, const Eigen::MatrixXf& components);
 
  private:
+  friend struct ModelAccess;  // learn/'s training and checkpoints
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

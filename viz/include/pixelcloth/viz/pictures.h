@@ -13,6 +13,7 @@
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/core/image.h"
 #include "pixelcloth/garment/garment.h"
+#include "pixelcloth/learn/train.h"
 #include "pixelcloth/patches/cloth_image.h"
 #include "pixelcloth/recon/reconstruct.h"
 
@@ -71,5 +72,10 @@ void writeCageFolder(const garment::Garment& garment, const std::filesystem::pat
 /// after relaxation, vertices pushed out and their deepest penetration, vertices still inside, vertices per part).
 void writeDressingFolder(const body::Body& body, const garment::Garment& garment, const cage::Dressing& dressing,
                          const std::filesystem::path& out);
+
+/// Training curves of a learn::TrainReport: per-vertex error (cm, log scale) on the train split (blue) and the
+/// regularisation split (orange) against the epoch, the best epoch marked, under a title naming `model`.
+core::RgbImage renderTrainingCurves(const learn::TrainReport& report, const std::string& model, int width = 640,
+                                    int height = 360);
 
 }  // namespace pixelcloth::viz

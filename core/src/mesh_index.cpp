@@ -37,12 +37,18 @@ struct PseudoNormals {
 };
 
 struct MeshIndex::Impl {
-  Eigen::MatrixX3d V, vertexNormals;
+  Eigen::MatrixX3d V;
   Eigen::MatrixX3i F;
   std::vector<Triangle> triangles;
   Tree tree;
-  mutable std::once_flag pseudoOnce;
+  mutable std::once_flag pseudoOnce, smoothOnce;
   mutable PseudoNormals pseudo;
+  mutable Eigen::MatrixX3d smooth;  ///< area-weighted vertex normals, built on the first smoothNormal query
+
+  const Eigen::MatrixX3d& smoothNormals() const {
+    std::call_once(smoothOnce, [this] { smooth = vertexNormals(V, F); });
+    return smooth;
+  }
 
   MeshHit hit(int f, const Eigen::Vector3d& p) const {
     MeshHit h;
@@ -78,7 +84,6 @@ MeshIndex::MeshIndex(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) : imp
                    "spatial index: a face uses a vertex outside [0, " << V.rows() << ")");
   impl_->V = V;
   impl_->F = F;
-  impl_->vertexNormals = vertexNormals(V, F);
   impl_->triangles.reserve(F.rows());
   for (int f = 0; f < F.rows(); ++f)
     impl_->triangles.emplace_back(toPoint(V.row(F(f, 0))), toPoint(V.row(F(f, 1))), toPoint(V.row(F(f, 2))));
@@ -136,7 +141,7 @@ Eigen::Vector3d MeshIndex::smoothNormal(int face, const Eigen::Vector3d& barycen
   const Eigen::MatrixX3d& V = impl_->V;
   const Eigen::MatrixX3i& F = impl_->F;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k) normal += barycentric[k] * impl_->vertexNormals.row(F(face, k)).transpose();
+  for (int k = 0; k < 3; ++k) normal += barycentric[k] * impl_->smoothNormals().row(F(face, k)).transpose();
   if (normal.norm() < 1e-12)
     normal = (V.row(F(face, 1)) - V.row(F(face, 0))).cross(V.row(F(face, 2)) - V.row(F(face, 0))).transpose();
   return normal.normalized();

@@ -32,7 +32,7 @@ class ImageCodec {
     const int L = static_cast<int>(blank_.layers.size());
     mask_ = torch::zeros({3 * L, blank_.height, blank_.width});
     for (int l = 0; l < L; ++l)
-      for (int c = 0; c < 3; ++c) mask_[3 * l + c].copy_(layerTensor(blank_.layers[l].mask).gt(0.5));
+      for (int c = 0; c < 3; ++c) mask_[3 * l + c].copy_(toTensor(blank_.layers[l].mask).gt(0.5));
   }
 
   std::vector<std::int64_t> shape() const { return {mask_.size(0), mask_.size(1), mask_.size(2)}; }
@@ -45,7 +45,7 @@ class ImageCodec {
     std::vector<torch::Tensor> channels;
     for (const patches::ClothLayer& layer : image.layers)
       for (const Eigen::MatrixXf* channel : {&layer.du, &layer.dv, &layer.dn})
-        channels.push_back(layerTensor(*channel));
+        channels.push_back(toTensor(*channel));
     return torch::stack(channels);
   }
 
@@ -62,7 +62,6 @@ class ImageCodec {
   }
 
  private:
-  static torch::Tensor layerTensor(const Eigen::MatrixXf& m) { return toTensor(m); }
   patches::ClothImager imager_;
   patches::ClothImage blank_;
   torch::Tensor mask_;

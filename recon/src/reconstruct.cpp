@@ -9,6 +9,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "dataset_internal.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/enum_names.h"
@@ -208,11 +209,65 @@ Reconstruction GarmentReconstructor::reconstruct(const cage::MarkerSet& markers,
 // ---------------------------------------------------------------------------------------------------------------------
 // Evaluation on a dataset
 
-namespace {
+namespace detail {
+
+std::unique_ptr<GarmentReconstructor> datasetReconstructor(const data::Dataset& dataset,
+                                                           const ReconstructionOptions& options) {
+  const fs::path& folder = dataset.info.folder;
+  const garment::Garment garment = data::datasetGarment(dataset.info);
+  const body::Body body = data::loadDatasetBody(folder);
+  const garment::Embedding embedding = data::loadDatasetEmbedding(folder, body.mesh.numFaces());
+  const Eigen::MatrixX3d rest = data::loadDatasetRestPositions(folder, garment.mesh.numVertices());
+  return std::make_unique<GarmentReconstructor>(body, garment, embedding, rest, options);
+}
+
 body::Pose poseOfRow(const data::Dataset& dataset, int row) {
   return body::Pose::fromLeading(dataset.pose(row), dataset.info.folder.string() + ": pose " + std::to_string(row));
 }
 
+cage::MarkerSet captureMarkers(const cage::MarkerSet& definition, const Eigen::MatrixX3d& truth,
+                               const cage::CaptureOptions& capture, int index) {
+  cage::CaptureOptions seeded = capture;
+  seeded.seed = capture.seed * 1000003ULL + static_cast<std::uint64_t>(index);
+  return cage::placeMarkers(definition, truth, seeded);
+}
+
+nlohmann::json useLengthModel(GarmentReconstructor& reconstructor, const data::Dataset& dataset,
+                              const cage::MarkerSet& definition, const std::string& lengthModel, double markerSpacing,
+                              const cage::LengthModelOptions& fit) {
+  const std::string datasetName = dataset.info.folder.string();
+  if (lengthModel == "none") {
+    reconstructor.setLengthModel(std::nullopt);
+    return "none";
+  }
+  if (lengthModel == "fit") {
+    const std::vector<int> train = dataset.rowsOf(data::Split::Train);
+    if (train.empty()) {
+      PIXELCLOTH_INFO("reconstruct: " << datasetName
+                                      << " has no training samples to fit the spline's length model on; the "
+                                         "spline keeps rest lengths");
+      reconstructor.setLengthModel(std::nullopt);
+      return "none";
+    }
+    std::vector<Eigen::MatrixX3d> samples;
+    for (int r : train) samples.push_back(dataset.positionsOf(r).cast<double>());
+    const cage::LengthModel model = reconstructor.solver().fitLengthModel(definition, samples, markerSpacing, fit);
+    reconstructor.setLengthModel(model);
+    return {{"source", "fitted on the train split"}, {"samples", model.samples}};
+  }
+  const cage::LengthModel model = cage::readLengthModel(lengthModel);
+  PIXELCLOTH_CHECK(std::abs(model.markerSpacing - markerSpacing) < 1e-9,
+                   lengthModel << ": fitted for markers " << model.markerSpacing << " m apart, these are "
+                               << markerSpacing
+                               << " m apart; fit one at this spacing (reconstruct --dataset with "
+                                  "--length-model fit writes length_model.json)");
+  reconstructor.setLengthModel(model, lengthModel);
+  return {{"source", fs::absolute(lengthModel).string()}, {"samples", model.samples}};
+}
+
+}  // namespace detail
+
+namespace {
 std::string sampleFolder(int index) {
   std::ostringstream s;
   s << "sample_" << std::setw(6) << std::setfill('0') << index;
@@ -231,42 +286,14 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
       rows.push_back(r);
   PIXELCLOTH_CHECK(!rows.empty(), datasetFolder.string() << ": the " << options.split << " split has no samples ("
                                                          << dataset.rows() << " in the folder); try --split all");
-  const garment::Garment garment = data::datasetGarment(dataset.info);
-  const body::Body body = data::loadDatasetBody(datasetFolder);
-  const garment::Embedding embedding = data::loadDatasetEmbedding(datasetFolder, body.mesh.numFaces());
-  const Eigen::MatrixX3d rest = data::loadDatasetRestPositions(datasetFolder, garment.mesh.numVertices());
   const auto start = std::chrono::steady_clock::now();
-  GarmentReconstructor reconstructor(body, garment, embedding, rest, options.reconstruction);
+  const std::unique_ptr<GarmentReconstructor> made = detail::datasetReconstructor(dataset, options.reconstruction);
+  GarmentReconstructor& reconstructor = *made;
+  const garment::Garment& garment = reconstructor.garment();
   const cage::Cage& cage = reconstructor.cage();
   const cage::MarkerSet definition = cage::defineMarkers(garment, cage, options.markers);
-  nlohmann::json lengthModelJson = "none";
-  if (options.lengthModel == "fit") {
-    const std::vector<int> train = dataset.rowsOf(data::Split::Train);
-    if (train.empty()) {
-      PIXELCLOTH_INFO("reconstruct: " << datasetFolder.string()
-                                      << " has no training samples to fit the spline's length model on; the "
-                                         "spline keeps rest lengths");
-      reconstructor.setLengthModel(std::nullopt);
-    } else {
-      std::vector<Eigen::MatrixX3d> samples;
-      for (int r : train) samples.push_back(dataset.positionsOf(r).cast<double>());
-      const cage::LengthModel model =
-          reconstructor.solver().fitLengthModel(definition, samples, options.markers.spacing, options.lengthModelFit);
-      reconstructor.setLengthModel(model);
-      lengthModelJson = {{"source", "fitted on the train split"}, {"samples", model.samples}};
-    }
-  } else if (options.lengthModel == "none") {
-    reconstructor.setLengthModel(std::nullopt);
-  } else {
-    const cage::LengthModel model = cage::readLengthModel(options.lengthModel);
-    PIXELCLOTH_CHECK(std::abs(model.markerSpacing - options.markers.spacing) < 1e-9,
-                     options.lengthModel << ": fitted for markers " << model.markerSpacing << " m apart, these are "
-                                         << options.markers.spacing
-                                         << " m apart; fit one at this spacing (reconstruct --dataset with "
-                                            "--length-model fit writes length_model.json)");
-    reconstructor.setLengthModel(model, options.lengthModel);
-    lengthModelJson = {{"source", fs::absolute(options.lengthModel).string()}, {"samples", model.samples}};
-  }
+  const nlohmann::json lengthModelJson = detail::useLengthModel(reconstructor, dataset, definition, options.lengthModel,
+                                                                options.markers.spacing, options.lengthModelFit);
   const std::vector<int>& cageVertices = reconstructor.solver().cageVertices();
   const std::vector<ReconstructionMethod> methods = allReconstructionMethods();
   const int V = garment.mesh.numVertices(), M = static_cast<int>(methods.size());
@@ -282,10 +309,8 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
   for (int r : rows) {
     const int index = dataset.info.settings.first() + r;
     const Eigen::MatrixX3d truth = dataset.positionsOf(r).cast<double>();
-    cage::CaptureOptions capture = options.capture;
-    capture.seed = options.capture.seed * 1000003ULL + static_cast<std::uint64_t>(index);
-    const cage::MarkerSet markers = cage::placeMarkers(definition, truth, capture);
-    const PosedBody posed = reconstructor.posed(poseOfRow(dataset, r));
+    const cage::MarkerSet markers = detail::captureMarkers(definition, truth, options.capture, index);
+    const PosedBody posed = reconstructor.posed(detail::poseOfRow(dataset, r));
     const bool writeMeshes = written < options.meshes;
     if (writeMeshes) {
       core::Mesh mesh = garment.mesh;

@@ -20,6 +20,7 @@
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/embedding.h"
 #include "support/fixtures.h"
+#include "support/recon_fixtures.h"
 #include "support/test_util.h"
 
 namespace pc = pixelcloth::core;
@@ -75,35 +76,8 @@ namespace fs = std::filesystem;
 namespace pcg = pixelcloth::cage;
 namespace pd = pixelcloth::data;
 
-/// The T-shirt dressed on the coarse mannequin, with a reconstructor over it.
-struct Dressed {
-  const pb::Body& body = pixelcloth::testing::coarseMannequin();
-  const pg::Garment& garment = pixelcloth::testing::tshirt();
-  pcg::Dressing dressing;
-  std::unique_ptr<pr::GarmentReconstructor> reconstructor;
-  pcg::MarkerSet definition;
-
-  Dressed() {
-    dressing = pcg::dressGarment(body, pcg::bodyCage(body), garment, pcg::garmentCage(garment));
-    reconstructor = std::make_unique<pr::GarmentReconstructor>(body, garment, dressing.embedding, dressing.relaxed);
-    definition = pcg::defineMarkers(garment, reconstructor->cage());
-  }
-
-  /// A worn shape of the dressed shirt in `pose`: its rest offsets carried by the posed body, plus a smooth bulge.
-  Eigen::MatrixX3d worn(const pb::Pose& pose, double bulge) const {
-    const pg::EmbeddedFrames rest = pg::embeddedFrames(body.mesh.V, body.mesh.F, dressing.embedding);
-    Eigen::MatrixX3d offsets = pg::offsetsFromPositions(rest, dressing.relaxed);
-    for (int v = 0; v < offsets.rows(); ++v)
-      offsets(v, 2) += bulge * (1 + std::sin(4 * dressing.relaxed(v, 1)) * std::cos(5 * dressing.relaxed(v, 0)));
-    const pg::EmbeddedFrames posed = pg::embeddedFrames(body.posedVertices(pose), body.mesh.F, dressing.embedding);
-    return pg::positionsFromOffsets(posed, offsets);
-  }
-};
-
-const Dressed& dressed() {
-  static const Dressed d;
-  return d;
-}
+using pixelcloth::testing::Dressed;
+using pixelcloth::testing::dressed;
 
 /// Mean distance between rows of `a` and `b` over `rows` (all rows when empty).
 double meanError(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b, const std::vector<int>& rows = {}) {
@@ -178,28 +152,7 @@ TEST(GarmentReconstructor, RefusesMarkersOfAnotherGarment) {
 TEST(ReconstructDataset, WritesMetricsForEveryMethodAndTheFirstMeshes) {
   const Dressed& d = dressed();
   const fs::path folder = pixelcloth::testing::freshDir("dataset"), out = pixelcloth::testing::freshDir("out");
-  pd::DatasetSettings settings;
-  settings.garment = "tshirt";
-  settings.poseSize = pb::kPoseSize;
-  settings.vertexCount = d.garment.mesh.numVertices();
-  settings.seed = 3;
-  settings.count = 10;
-  settings.body = {{"kind", "mannequin"}, {"edge_length", 0.02}};
-  {
-    pd::DatasetWriter writer(folder, settings, d.body, d.garment, d.dressing.relaxed, d.dressing.embedding);
-    for (int i : writer.pending()) {
-      const pb::Pose pose = pb::randomPose(100 + i, 0.3);
-      const Eigen::MatrixX3d positions = d.worn(pose, 0.002 + 0.0005 * i);
-      const pg::EmbeddedFrames frames =
-          pg::embeddedFrames(d.body.posedVertices(pose), d.body.mesh.F, d.dressing.embedding);
-      pd::Sample sample;
-      sample.pose = pose.toVector();
-      sample.positions = positions.cast<float>();
-      sample.offsets = pg::offsetsFromPositions(frames, positions).cast<float>();
-      writer.add(i, sample);
-    }
-    writer.finish();
-  }
+  pixelcloth::testing::writeWornDataset(d, folder, 10, 3);
   pr::DatasetReconstructionOptions options;
   options.split = "all";
   options.meshes = 1;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/cage/body_cage.h"
@@ -16,6 +18,7 @@
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/data/dataset.h"
+#include "pixelcloth/recon/base.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
@@ -70,7 +73,7 @@ void runMarkers(const MarkersArgs& args) {
 }
 
 struct ReconstructArgs {
-  std::string markers, pose, body, dressing, dataset, split = "test", out, method = "spline";
+  std::string markers, pose, body, dressing, dataset, split = "test", out, method = "spline", writeBase;
   double noiseCm = 0, dropout = 0, spacing = 0.10;
   std::uint64_t seed = 0;
   int meshes = 3;
@@ -79,11 +82,17 @@ struct ReconstructArgs {
   double anisoThetaDegrees = 0, anisoRatio = 0.6;
   double bodyClearance = 0.001;
   cage::SplineOptions spline;
+  int threads = 0;
   bool quiet = false;
+  /// The options of the evaluation alone that were given on the command line (refused with --write-base).
+  std::vector<std::string> evaluationOptions;
+  /// The options of the markers form alone that were given (refused with --dataset --write-base).
+  std::vector<std::string> markersOptions;
 };
 
 void runFromMarkers(const ReconstructArgs& args) {
   PIXELCLOTH_CHECK(!args.pose.empty(), "reconstruct --markers needs --pose (the body's pose, JSON)");
+  PIXELCLOTH_CHECK(!args.out.empty(), "reconstruct --markers needs --out (the garment's OBJ)");
   PIXELCLOTH_CHECK(args.body.empty() || args.dressing.empty(),
                    "reconstruct: --body and --dressing exclude each other: the dressing folder holds its body");
   const recon::ReconstructionMethod method = recon::reconstructionMethodFromName(args.method, "reconstruct --method");
@@ -128,22 +137,32 @@ void runFromMarkers(const ReconstructArgs& args) {
                                   << "; " << result.spline.summary() << ") -> " << args.out);
 }
 
+/// The reconstruction options of the dataset forms (evaluation and bases).
+recon::ReconstructionOptions datasetReconstructionOptions(const ReconstructArgs& args) {
+  recon::ReconstructionOptions options;
+  options.spline.restLengths = cage::restLengthsFromName(args.restLengths, "reconstruct --rest-lengths");
+  // Noisy markers are fitted softly, with the noise as their sigma.
+  options.spline.markerSigma = args.noiseCm / 100;
+  options.spline.lengthTolerance = args.spline.lengthTolerance;
+  options.spline.bendingWeight = args.spline.bendingWeight;
+  options.spline.stretch = args.spline.stretch;
+  options.spline.tangentPrior = args.spline.tangentPrior;
+  options.anisotropic.theta = args.anisoThetaDegrees * M_PI / 180;
+  options.anisotropic.ratio = args.anisoRatio;
+  options.bodyClearance = args.bodyClearance;
+  return options;
+}
+
 void runFromDataset(const ReconstructArgs& args) {
+  PIXELCLOTH_CHECK(!args.out.empty(),
+                   "reconstruct --dataset needs --out (the folder for metrics and meshes), or "
+                   "--write-base (a base folder for the learned refinement)");
   recon::DatasetReconstructionOptions options;
   options.split = args.split;
   options.markers.spacing = args.spacing;
   options.capture = {args.noiseCm / 100, args.dropout, args.seed};
-  options.reconstruction.spline.restLengths = cage::restLengthsFromName(args.restLengths, "reconstruct --rest-lengths");
-  // Noisy markers are fitted softly, with the noise as their sigma.
-  options.reconstruction.spline.markerSigma = args.noiseCm / 100;
-  options.reconstruction.spline.lengthTolerance = args.spline.lengthTolerance;
-  options.reconstruction.spline.bendingWeight = args.spline.bendingWeight;
-  options.reconstruction.spline.stretch = args.spline.stretch;
-  options.reconstruction.spline.tangentPrior = args.spline.tangentPrior;
+  options.reconstruction = datasetReconstructionOptions(args);
   options.lengthModel = args.lengthModel.empty() ? "fit" : args.lengthModel;
-  options.reconstruction.anisotropic.theta = args.anisoThetaDegrees * M_PI / 180;
-  options.reconstruction.anisotropic.ratio = args.anisoRatio;
-  options.reconstruction.bodyClearance = args.bodyClearance;
   options.meshes = args.meshes;
   options.quiet = args.quiet;
   const recon::DatasetReconstructionReport report = recon::reconstructDataset(args.dataset, args.out, options);
@@ -154,12 +173,44 @@ void runFromDataset(const ReconstructArgs& args) {
               << " cm\n";
 }
 
+void runWriteBase(const ReconstructArgs& args) {
+  auto list = [](const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+    return text;
+  };
+  PIXELCLOTH_CHECK(args.out.empty(),
+                   "reconstruct --write-base and --out exclude each other: --write-base writes the "
+                   "base folder, --out the evaluation's metrics and meshes (run twice for both)");
+  PIXELCLOTH_CHECK(args.evaluationOptions.empty(),
+                   "reconstruct --write-base: " << list(args.evaluationOptions)
+                                                << " belong to the evaluation (--out); the base folder holds every "
+                                                   "row of the dataset (all splits), rebuilt by spline_anisotropic");
+  PIXELCLOTH_CHECK(args.markersOptions.empty(), "reconstruct --write-base: " << list(args.markersOptions)
+                                                                             << " belong to the markers form; the "
+                                                                                "dataset holds its body and poses");
+  recon::BaseSetOptions options;
+  options.markers.spacing = args.spacing;
+  options.capture = {args.noiseCm / 100, args.dropout, args.seed};
+  options.reconstruction = datasetReconstructionOptions(args);
+  options.lengthModel = args.lengthModel.empty() ? "fit" : args.lengthModel;
+  options.threads = args.threads;
+  options.quiet = args.quiet;
+  const recon::BaseSetReport report = recon::writeDatasetBases(args.dataset, args.writeBase, options);
+  std::cout << "reconstruct: base folder " << args.writeBase << " of " << args.dataset << ": " << report.summary()
+            << "\n";
+}
+
 void runReconstruct(const ReconstructArgs& args) {
   if (args.quiet) core::setLogLevel(core::LogLevel::Warning);
   PIXELCLOTH_CHECK(args.markers.empty() != args.dataset.empty(),
                    "reconstruct: give either --markers (with --pose) or --dataset, not both or neither");
+  PIXELCLOTH_CHECK(args.writeBase.empty() || !args.dataset.empty(),
+                   "reconstruct --write-base needs --dataset: the bases are made from a dataset's rows");
   if (!args.markers.empty())
     runFromMarkers(args);
+  else if (!args.writeBase.empty())
+    runWriteBase(args);
   else
     runFromDataset(args);
 }
@@ -188,7 +239,8 @@ void registerReconstruct(CLI::App& app) {
       "reconstruct",
       "Rebuild garments from sparse markers: length-preserving spline cage, procedural patch fill. Either "
       "--markers M.json --pose P.json --out garment.obj, or --dataset DIR --split S --out DIR (every method, "
-      "metrics.json, error maps)");
+      "metrics.json, error maps), or --dataset DIR --write-base DIR (base offsets and marker features of every row, "
+      "for the learned refinement; docs/reconstruction.md)");
   verb->add_option("--markers", args->markers, "Marker file with positions (pixelcloth markers; docs/markers.md)");
   verb->add_option("--pose", args->pose, "Pose of the body (JSON, as pixelcloth pose reads it)");
   verb->add_option("--body", args->body, "Body folder (default: the built-in mannequin, dressed on the fly)");
@@ -228,9 +280,20 @@ void registerReconstruct(CLI::App& app) {
   verb->add_option("--body-clearance", args->bodyClearance,
                    "Rebuilt vertices nearer the body than this (metres) are moved out to it; negative: never")
       ->capture_default_str();
-  verb->add_option("--out", args->out, "garment.obj (markers form) or output folder (dataset form)")->required();
+  verb->add_option("--out", args->out, "garment.obj (markers form) or output folder (dataset form)");
+  verb->add_option("--write-base", args->writeBase,
+                   "Dataset form: instead of --out, write a base folder (base offsets and marker features of every "
+                   "row, spline_anisotropic; docs/dataset.md)");
+  verb->add_option("--threads", args->threads, "--write-base: samples rebuilt at once (0: one per core)")
+      ->capture_default_str();
   verb->add_flag("--quiet", args->quiet, "No progress on stderr");
-  verb->callback([args] { runReconstruct(*args); });
+  verb->callback([args, verb] {
+    for (const char* name : {"--split", "--meshes", "--method"})
+      if (verb->count(name) > 0) args->evaluationOptions.push_back(name);
+    for (const char* name : {"--pose", "--body", "--dressing"})
+      if (verb->count(name) > 0) args->markersOptions.push_back(name);
+    runReconstruct(*args);
+  });
 }
 
 }  // namespace pixelcloth::apps

@@ -24,6 +24,8 @@
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
+#include "pixelcloth/data/base_set.h"
+#include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/embedding.h"
 #include "pixelcloth/garment/garment.h"
 #include "support/test_util.h"
@@ -230,7 +232,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
       {"markers", {"--garment", "--spacing", "--dataset", "--sample", "--noise", "--dropout", "--pose-out", "--out"}},
       {"reconstruct",
        {"--markers", "--pose", "--body", "--dressing", "--method", "--dataset", "--split", "--noise", "--dropout",
-        "--spacing", "--rest-lengths", "--out", "--quiet"}},
+        "--spacing", "--rest-lengths", "--out", "--write-base", "--threads", "--quiet"}},
       {"model", {"--arch", "--width", "--inputs", "--garment", "--values", "--components", "--summary"}},
       {"train", {"--dataset", "--model", "--width", "--loss", "--epochs", "--batch", "--lr", "--seed", "--out"}},
   };
@@ -1091,6 +1093,48 @@ TEST_F(CliReconstructTest, MarkersFormRebuildsOneSampleFromItsMarkers) {
                        "--out", withModel.string()});
   ASSERT_EQ(run.status, 0) << run;
   EXPECT_LT((core::readMesh(withModel).V - truth.V).rowwise().norm().mean(), 0.01);
+}
+
+TEST_F(CliReconstructTest, WriteBaseFormWritesABaseFolderOfEveryRow) {
+  const fs::path out = work_ / "bases";
+  const CliRun run = runPixelcloth(
+      {"reconstruct", "--dataset", data_.string(), "--write-base", out.string(), "--spacing", "0.08", "--quiet"});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_EQ(lines(run.out).size(), 1u) << run;
+  EXPECT_NE(run.out.find(out.string()), std::string::npos) << run;
+  EXPECT_NE(run.out.find("3 samples"), std::string::npos) << run;
+  EXPECT_TRUE(run.err.empty()) << run;
+  EXPECT_TRUE(noTemporaries(out));
+  const data::BaseSet base = data::openBaseSet(out, data::readDatasetInfo(data_));
+  EXPECT_EQ(base.samples, 3);
+  EXPECT_EQ(base.vertices, tie_.mesh.numVertices());
+  EXPECT_GT(base.markers, 8);
+  EXPECT_TRUE(base.offsets.allFinite());
+  EXPECT_GT(base.offsets.cwiseAbs().maxCoeff(), 0);
+  EXPECT_DOUBLE_EQ(base.manifest["settings"]["marker_spacing_m"].get<double>(), 0.08);
+  EXPECT_EQ(base.manifest["settings"]["method"], "spline_anisotropic");
+}
+
+TEST_F(CliReconstructTest, WriteBaseRefusesOptionsThatMeanNothingThere) {
+  const std::string out = (work_ / "bases").string();
+  EXPECT_TRUE(
+      refused(runPixelcloth({"reconstruct", "--dataset", data_.string(), "--write-base", out, "--split", "test"}),
+              {"--split", "all splits"}));
+  EXPECT_TRUE(refused(runPixelcloth({"reconstruct", "--dataset", data_.string(), "--write-base", out, "--out",
+                                     (work_ / "rec").string()}),
+                      {"--write-base", "--out"}));
+  EXPECT_TRUE(
+      refused(runPixelcloth({"reconstruct", "--dataset", data_.string(), "--write-base", out, "--method", "linear"}),
+              {"--method"}));
+  EXPECT_TRUE(refused(runPixelcloth({"reconstruct", "--markers", (work_ / "m.json").string(), "--pose",
+                                     (work_ / "p.json").string(), "--write-base", out}),
+                      {"--write-base", "--dataset"}));
+  EXPECT_TRUE(refused(runPixelcloth({"reconstruct", "--dataset", data_.string()}), {"--out", "--write-base"}));
+  EXPECT_TRUE(refused(runPixelcloth({"reconstruct", "--dataset", data_.string(), "--write-base", data_.string()}),
+                      {"dataset folder"}));
+  EXPECT_TRUE(filesUnder(out).empty());
+  EXPECT_FALSE(fs::exists(work_ / "rec"));
+  EXPECT_EQ(runPixelcloth({"dataset", "check", data_.string()}).status, 0);
 }
 
 TEST_F(CliReconstructTest, RefusesBadInputsNamingTheFileAndWritesNothing) {

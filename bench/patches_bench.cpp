@@ -14,7 +14,7 @@ const std::vector<pp::PatchMesh>& shirtPatches() {
     const pixelcloth::garment::Garment shirt = pixelcloth::garment::makeTShirt();
     std::vector<pp::PatchMesh> out;
     for (const pp::Patch& p :
-         pp::segmentPatches(shirt, pixelcloth::cage::cutEdges(pixelcloth::cage::garmentCage(shirt))))
+         pp::garmentPatches(shirt))
       out.push_back(pp::patchMesh(shirt, p));
     return out;
   }();

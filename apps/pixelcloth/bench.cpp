@@ -73,7 +73,7 @@ void runBench(int repeats) {
   Eigen::MatrixXf pixels;
   emit("patches.raster_512_from_3k_vertices",
        1e3 * medianSeconds(repeats * 20, [&] { raster.applyTo(offsets, pixels); }), "ms", 0.5);
-  std::vector<patches::Patch> patchList = patches::segmentPatches(shirt, cage::cutEdges(cage::garmentCage(shirt)));
+  std::vector<patches::Patch> patchList = patches::garmentPatches(shirt);
   std::unique_ptr<patches::GarmentFill> fill;
   emit("patches.bases_all_28_patches",
        medianSeconds(repeats, [&] { fill = std::make_unique<patches::GarmentFill>(shirt, patchList); }), "s", 1.0);

@@ -33,6 +33,7 @@ void runDemo(const DemoArgs& args) {
   viz::demoNecktieDataset(report, body, demo);
   viz::demoPoseSampling(report, body, demo);
   viz::demoNetworks(report);
+  viz::demoLearning(report, body, demo);
   report.write();
 }
 }  // namespace
@@ -54,6 +55,9 @@ void registerDemo(CLI::App& app) {
                    "Simulated T-shirt samples (80% train the spline's length model, 10% test the reconstruction)")
       ->capture_default_str()
       ->check(CLI::Range(1, 2000));
+  verb->add_option("--learning-epochs", args->options.learningEpochs, "Epochs of each learned model")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   verb->add_option("--seed", args->options.seed, "Seed of the random poses")->capture_default_str();
   verb->callback([args] { runDemo(*args); });
 }

@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerReconstruct(app);
   pixelcloth::apps::registerModel(app);
   pixelcloth::apps::registerTrain(app);
+  pixelcloth::apps::registerPredict(app);
+  pixelcloth::apps::registerEvaluate(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
 
   try {

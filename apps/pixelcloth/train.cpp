@@ -1,10 +1,13 @@
-// pixelcloth train: an image decoder learned from a dataset's cloth images (the whole garment or the necktie).
+// pixelcloth train: a decoder or baseline learned from a dataset (the whole garment, the 28 patches, the necktie, or
+// the fully connected baselines), in plain or residual mode.
 #include "pixelcloth/learn/train.h"
 
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
+#include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
 #include "verbs.h"
 
@@ -12,41 +15,89 @@ namespace pixelcloth::apps {
 
 namespace {
 struct TrainArgs {
-  std::string dataset, out, model = "whole";
+  std::string dataset, out, model = "whole", patches = "all", space, residual;
   learn::TrainOptions options;
 };
+
+/// "all" -> {}; "3,7,12" -> {3, 7, 12}.
+std::vector<int> parsePatchList(const std::string& text) {
+  std::vector<int> ids;
+  if (text == "all") return ids;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::size_t used = 0;
+    int id = -1;
+    try {
+      id = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    PIXELCLOTH_CHECK(used == item.size() && id >= 0,
+                     "--patches '" << text << "': expected all or patch ids separated by commas, e.g. 3,7");
+    ids.push_back(id);
+  }
+  PIXELCLOTH_CHECK(!ids.empty(), "--patches '" << text << "': no patch ids");
+  return ids;
+}
 
 void runTrain(TrainArgs args) {
   if (args.options.quiet) core::setLogLevel(core::LogLevel::Warning);
   args.options.model.architecture = learn::architectureFromName(args.model, "--model");
-  const learn::TrainReport report = learn::trainImageModel(args.dataset, args.out, args.options);
-  const learn::EpochRecord& best = report.epochs[report.bestEpoch - 1];
-  std::cout << std::fixed << std::setprecision(3) << "epoch " << best.epoch << " of " << report.epochs.size()
-            << ": train " << best.trainErrorCm << " cm, regularisation " << best.regularisationErrorCm << " cm -> "
-            << args.out << "/{model.pt, model.json, log.csv}\n";
+  args.options.patches = parsePatchList(args.patches);
+  if (!args.space.empty()) args.options.space = learn::offsetSpaceFromName(args.space, "--space");
+  args.options.residual = args.residual;
+  const learn::TrainReport report = learn::train(args.dataset, args.out, args.options);
+  std::cout << std::fixed << std::setprecision(3);
+  for (const learn::NetworkReport& n : report.networks) {
+    const learn::EpochRecord& best = n.epochs[n.bestEpoch - 1];
+    std::cout << (n.patch >= 0 ? "patch " + std::to_string(n.patch) + ": " : std::string()) << "epoch " << best.epoch
+              << " of " << n.epochs.size() << ": train " << best.trainErrorCm << " cm, regularisation "
+              << best.regularisationErrorCm << " cm -> " << n.folder.string() << "\n";
+  }
+  std::cout << report.networks.size() << " network(s) in " << std::setprecision(1) << report.seconds << " s\n";
 }
 }  // namespace
 
 void registerTrain(CLI::App& app) {
   auto args = std::make_shared<TrainArgs>();
   CLI::App* verb = app.add_subcommand(
-      "train", "Train an image decoder (whole garment or necktie) on a dataset's cloth images; keep the best epoch");
+      "train", "Train a decoder or baseline on a dataset; keep the best epoch by regularisation error; resumable");
   verb->add_option("--dataset", args->dataset, "Dataset folder (pixelcloth generate or dataset import)")->required();
-  verb->add_option("--model", args->model, "Network: whole (T-shirt, 256 x 256 x 6) or necktie (256 x 64 x 3)")
-      ->check(CLI::IsMember({"whole", "necktie"}))
+  verb->add_option("--model", args->model,
+                   "Network: whole (T-shirt, 6 x 256 x 256), patch (one per patch, 3 x 160 x 160 crops), necktie "
+                   "(3 x 256 x 64), fc or fc-pca (2 x 256 ReLU to per-vertex values or 128 PCA coefficients)")
+      ->check(CLI::IsMember({"whole", "patch", "necktie", "fc", "fc-pca"}))
+      ->capture_default_str();
+  verb->add_option("--patches", args->patches,
+                   "Patch models: all, or ids such as 3,7 (one job of an array; runs fill one --out folder)")
       ->capture_default_str();
   verb->add_option("--width", args->options.model.width, "Multiplier of every channel count, (0, 4]")
       ->capture_default_str();
+  verb->add_option("--components", args->options.model.pcaComponents, "fc-pca: PCA components of the train split")
+      ->capture_default_str();
+  verb->add_option("--space", args->space,
+                   "Values: local (offsets in the embedded frames), root (offsets in the root frame) or positions "
+                   "(fc, fc-pca); default local, root for the necktie")
+      ->check(CLI::IsMember({"local", "root", "positions"}));
+  verb->add_option("--residual", args->residual,
+                   "Base folder of the dataset (reconstruct --write-base): learn ground truth minus the marker "
+                   "reconstruction, with the marker features as extra inputs");
   verb->add_option("--loss", args->options.loss, "Image loss on the padded UV mask: l1 or l2")
       ->check(CLI::IsMember({"l1", "l2"}))
       ->capture_default_str();
+  verb->add_option("--normal-weight", args->options.normalWeight,
+                   "Weight of the normal loss; default 0.01 (T-shirt), 0.1 (necktie)");
+  verb->add_option("--edge-weight", args->options.edgeWeight,
+                   "Weight of the edge-length loss; default 0.1 (necktie), 0 (T-shirt)");
   verb->add_option("--epochs", args->options.epochs, "Passes over the train split")->capture_default_str();
   verb->add_option("--batch", args->options.batch, "Samples per Adam step")->capture_default_str();
   verb->add_option("--lr", args->options.learningRate, "Adam's learning rate")->capture_default_str();
   verb->add_option("--seed", args->options.seed, "Seeds the weights and the order of the samples")
       ->capture_default_str();
+  verb->add_option("--threads", args->options.threads, "LibTorch threads (0: one per core)")->capture_default_str();
   verb->add_option("--out", args->out,
-                   "Model folder: model.pt (best epoch by regularisation error), model.json, log.csv")
+                   "Model folder: model.pt (best epoch), model.json, log.csv, checkpoint.pt (patch_NN/ per patch)")
       ->required();
   verb->add_flag("--quiet", args->options.quiet, "No progress on stderr");
   verb->callback([args] { runTrain(*args); });

@@ -24,5 +24,8 @@ void registerReconstruct(CLI::App& app);
 /// `model` and `train` (learn/): a network's size; training an image decoder.
 void registerModel(CLI::App& app);
 void registerTrain(CLI::App& app);
+/// `predict` and `evaluate` (learn/, stitch/): garments from a trained model; its errors on a split.
+void registerPredict(CLI::App& app);
+void registerEvaluate(CLI::App& app);
 
 }  // namespace pixelcloth::apps

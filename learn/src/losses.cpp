@@ -6,7 +6,7 @@ torch::Tensor maskedImageLoss(const torch::Tensor& predicted, const torch::Tenso
                               ImageLoss kind) {
   TORCH_CHECK(predicted.sizes() == target.sizes(), "image loss: predicted ", predicted.sizes(), " but target ",
               target.sizes());
-  TORCH_CHECK(predicted.dim() == 4, "image loss: expected B x C x H x W images, got ", predicted.sizes());
+  TORCH_CHECK(predicted.dim() >= 2, "image loss: expected B x ... outputs, got ", predicted.sizes());
   const torch::Tensor difference = predicted - target;
   const torch::Tensor error = kind == ImageLoss::L1 ? difference.abs() : difference.square();
   const torch::Tensor weights = mask.to(predicted.dtype()).expand_as(predicted);

@@ -12,7 +12,8 @@ enum class ImageLoss { L1, L2 };
 
 /// The paper's image loss on the enlarged patch: the mean over masked pixels and channels of |p - t| (L1) or
 /// (p - t)^2 (L2). `predicted`, `target` B x C x H x W; `mask` B x 1 x H x W (or broadcastable), 1 where the padded UV
-/// mask holds cloth or padding, 0 on empty pixels. Zero when nothing is masked.
+/// mask holds cloth or padding, 0 on empty pixels. Zero when nothing is masked. The baselines' B x values outputs
+/// take the same loss with a mask of ones.
 torch::Tensor maskedImageLoss(const torch::Tensor& predicted, const torch::Tensor& target, const torch::Tensor& mask,
                               ImageLoss kind = ImageLoss::L1);
 

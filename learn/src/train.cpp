@@ -1,22 +1,31 @@
-// Training a whole-garment image decoder on a dataset's cloth images, its checkpoint, and prediction.
+// Training a network on a dataset: batches made on a prefetch thread, the losses, Adam, model selection, checkpoints.
 #include "pixelcloth/learn/train.h"
 
 #include <torch/torch.h>
 
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <optional>
 #include <random>
 #include <sstream>
+#include <thread>
 
+#include "checkpoint.h"
 #include "losses.h"
 #include "model_impl.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
+#include "pixelcloth/core/log.h"
 #include "pixelcloth/core/progress.h"
-#include "pixelcloth/data/dataset.h"
-#include "pixelcloth/patches/cloth_image.h"
+#include "pixelcloth/patches/patch.h"
+#include "target.h"
 #include "tensor.h"
+#include "pixelcloth/learn/training_data.h"
 
 namespace pixelcloth::learn {
 
@@ -24,239 +33,360 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// The cloth images of one garment as tensors: channels (du, dv, dn) per layout, C x H x W.
-class ImageCodec {
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+/// One step's data: the inputs, the encoded targets and, for the geometric losses, the covered vertices' frames,
+/// base values and true positions.
+struct Batch {
+  std::vector<int> rows;
+  torch::Tensor inputs, targets;           ///< B x inputs; B x target shape
+  torch::Tensor origin, t, b, n, base, truth;  ///< B x n x 3 each (geometry only)
+};
+
+/// Rows of per-row #V x 3 matrices at the target's vertices, as B x n x 3.
+torch::Tensor gather(const std::vector<Eigen::MatrixXf>& perRow, const std::vector<int>& rows,
+                     const torch::Tensor& vertices) {
+  std::vector<torch::Tensor> parts;
+  for (int r : rows) parts.push_back(toTensor(perRow[r]).index_select(0, vertices));
+  return torch::stack(parts);
+}
+
+torch::Tensor gatherFrames(const TrainingData& data, const std::vector<int>& rows, const torch::Tensor& vertices,
+                           Eigen::MatrixX3d garment::EmbeddedFrames::*member) {
+  std::vector<torch::Tensor> parts;
+  for (int r : rows) parts.push_back(toTensor((data.frames[r].*member).cast<float>()).index_select(0, vertices));
+  return torch::stack(parts);
+}
+
+Batch makeBatch(const TrainingData& data, const Target& target, const torch::Tensor& vertices, std::vector<int> rows,
+                bool geometry) {
+  Batch batch;
+  Eigen::MatrixXf inputs(rows.size(), data.inputs.cols());
+  std::vector<torch::Tensor> targets;
+  for (size_t k = 0; k < rows.size(); ++k) {
+    inputs.row(k) = data.inputs.row(rows[k]);
+    targets.push_back(target.encode(data.values[rows[k]]));
+  }
+  batch.inputs = toTensor(inputs);
+  batch.targets = torch::stack(targets);
+  if (geometry) {
+    batch.origin = gatherFrames(data, rows, vertices, &garment::EmbeddedFrames::origin);
+    batch.t = gatherFrames(data, rows, vertices, &garment::EmbeddedFrames::t);
+    batch.b = gatherFrames(data, rows, vertices, &garment::EmbeddedFrames::b);
+    batch.n = gatherFrames(data, rows, vertices, &garment::EmbeddedFrames::n);
+    batch.truth = gather(data.truth, rows, vertices);
+    batch.base = data.residual() ? gather(data.base, rows, vertices) : torch::zeros_like(batch.truth);
+  }
+  batch.rows = std::move(rows);
+  return batch;
+}
+
+/// Makes an epoch's batches on a second thread, at most two ahead of the trainer, so rasterising the targets overlaps
+/// the network's steps.
+class Prefetcher {
  public:
-  explicit ImageCodec(const garment::Garment& garment)
-      : imager_(garment), blank_(imager_.rasterize(Eigen::MatrixXf::Zero(garment.mesh.numVertices(), 3))) {
-    const int L = static_cast<int>(blank_.layers.size());
-    mask_ = torch::zeros({3 * L, blank_.height, blank_.width});
-    for (int l = 0; l < L; ++l)
-      for (int c = 0; c < 3; ++c) mask_[3 * l + c].copy_(toTensor(blank_.layers[l].mask).gt(0.5));
+  Prefetcher(const TrainingData& data, const Target& target, const torch::Tensor& vertices,
+             const std::vector<int>& order, int batchSize, bool geometry) {
+    worker_ = std::thread([=, &data, &target] {
+      try {
+        for (size_t first = 0; first < order.size(); first += batchSize) {
+          const size_t count = std::min<size_t>(batchSize, order.size() - first);
+          Batch batch = makeBatch(data, target, vertices,
+                                  std::vector<int>(order.begin() + first, order.begin() + first + count), geometry);
+          std::unique_lock<std::mutex> lock(mutex_);
+          changed_.wait(lock, [&] { return queue_.size() < 2 || stop_; });
+          if (stop_) return;
+          queue_.push_back(std::move(batch));
+          changed_.notify_all();
+        }
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      finished_ = true;
+      changed_.notify_all();
+    });
   }
-
-  std::vector<std::int64_t> shape() const { return {mask_.size(0), mask_.size(1), mask_.size(2)}; }
-  /// 1 on the padded UV mask (cloth and padding), 0 on empty pixels: C x H x W.
-  const torch::Tensor& mask() const { return mask_; }
-
-  /// The cloth image of per-vertex offsets (#V x 3): C x H x W.
-  torch::Tensor image(const Eigen::MatrixXf& offsets) const {
-    const patches::ClothImage image = imager_.rasterize(offsets);
-    std::vector<torch::Tensor> channels;
-    for (const patches::ClothLayer& layer : image.layers)
-      for (const Eigen::MatrixXf* channel : {&layer.du, &layer.dv, &layer.dn})
-        channels.push_back(toTensor(*channel));
-    return torch::stack(channels);
-  }
-
-  /// Per-vertex offsets (#V x 3) sampled from an image (C x H x W), as the cloth pixels see it.
-  Eigen::MatrixXf offsets(const torch::Tensor& image) const {
-    patches::ClothImage predicted = blank_;
-    const torch::Tensor cpu = image.to(torch::kCPU, torch::kFloat32).contiguous();
-    for (size_t l = 0; l < predicted.layers.size(); ++l) {
-      patches::ClothLayer& layer = predicted.layers[l];
-      Eigen::MatrixXf* channels[3] = {&layer.du, &layer.dv, &layer.dn};
-      for (int c = 0; c < 3; ++c) *channels[c] = toEigen(cpu[3 * l + c]);
+  ~Prefetcher() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+      changed_.notify_all();
     }
-    return imager_.sample(predicted);
+    worker_.join();
+  }
+  /// The next batch (none at the end of the epoch); adds the time spent waiting to `waited`.
+  std::optional<Batch> next(double& waited) {
+    const auto start = Clock::now();
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [&] { return !queue_.empty() || finished_; });
+    waited += secondsSince(start);
+    if (error_) std::rethrow_exception(error_);
+    if (queue_.empty()) return std::nullopt;
+    Batch batch = std::move(queue_.front());
+    queue_.pop_front();
+    changed_.notify_all();
+    return batch;
   }
 
  private:
-  patches::ClothImager imager_;
-  patches::ClothImage blank_;
-  torch::Tensor mask_;
+  std::thread worker_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<Batch> queue_;
+  bool finished_ = false, stop_ = false;
+  std::exception_ptr error_;
 };
 
-/// Mean per-vertex distance (cm) between predicted and stored offsets over `rows` (frames are orthonormal, so it is the
-/// position error); NaN for no rows.
-double vertexErrorCm(torch::nn::Sequential& net, const ImageCodec& codec, const data::Dataset& dataset,
-                     const std::vector<int>& rows) {
+/// Positions of predicted values (B x n x 3) plus the batch's base, in the data's space.
+torch::Tensor positionsOf(OffsetSpace space, const torch::Tensor& values, const Batch& batch) {
+  const torch::Tensor full = values + batch.base;
+  switch (space) {
+    case OffsetSpace::Local: return positionsFromOffsets(full, batch.origin, batch.t, batch.b, batch.n);
+    case OffsetSpace::Root: return batch.origin + full;
+    case OffsetSpace::Positions: return full;
+  }
+  return full;
+}
+
+/// Mean per-vertex distance (cm) between the network's values and the targets over `rows`, on the target's vertices
+/// (frames are orthonormal, so in every space it is the position error); NaN for no rows.
+double errorCm(torch::nn::Sequential& net, const Target& target, const TrainingData& data, const std::vector<int>& rows,
+               const torch::Tensor& vertices) {
   if (rows.empty()) return std::numeric_limits<double>::quiet_NaN();
   torch::NoGradGuard noGrad;
   net->eval();
   double sum = 0;
   for (size_t first = 0; first < rows.size(); first += 16) {
-    const size_t count = std::min<size_t>(16, rows.size() - first);
-    Eigen::MatrixXf poses(count, dataset.info.settings.poseSize);
-    for (size_t k = 0; k < count; ++k) poses.row(k) = dataset.pose(rows[first + k]).transpose();
-    const torch::Tensor predicted = net->forward(toTensor(poses));
-    for (size_t k = 0; k < count; ++k)
-      sum += (codec.offsets(predicted[k]) - dataset.offsetsOf(rows[first + k])).rowwise().norm().mean();
+    const std::vector<int> chunk(rows.begin() + first, rows.begin() + std::min(rows.size(), first + 16));
+    Eigen::MatrixXf inputs(chunk.size(), data.inputs.cols());
+    for (size_t k = 0; k < chunk.size(); ++k) inputs.row(k) = data.inputs.row(chunk[k]);
+    const torch::Tensor predicted = target.decode(net->forward(toTensor(inputs)));
+    sum += (predicted - gather(data.values, chunk, vertices)).norm(2, 2).mean(1).sum().item<double>();
   }
   return 100 * sum / rows.size();
 }
 
 std::string csvOf(const std::vector<EpochRecord>& epochs) {
   std::ostringstream csv;
-  csv << "epoch,loss,train_error_cm,regularisation_error_cm,seconds\n";
+  csv << "epoch,loss,normal_loss,edge_loss,train_error_cm,regularisation_error_cm,seconds,data_wait_seconds\n";
   for (const EpochRecord& e : epochs)
-    csv << e.epoch << ',' << e.loss << ',' << e.trainErrorCm << ',' << e.regularisationErrorCm << ',' << e.seconds
-        << '\n';
+    csv << e.epoch << ',' << e.loss << ',' << e.normalLoss << ',' << e.edgeLoss << ',' << e.trainErrorCm << ','
+        << e.regularisationErrorCm << ',' << e.seconds << ',' << e.dataWaitSeconds << '\n';
   return csv.str();
 }
 
-void saveWeights(const torch::nn::Sequential& net, const fs::path& path) {
-  torch::serialize::OutputArchive archive;
-  net->save(archive);
-  core::writeAtomically(path, [&](const fs::path& temporary) { archive.save_to(temporary.string()); });
+nlohmann::json numberOrNull(double value) { return std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value); }
+
+/// Everything that decides a network's weights: a checkpoint resumes only under the same signature.
+nlohmann::json signatureOf(const nlohmann::json& sidecar, const TrainOptions& options, double normalWeight,
+                           double edgeWeight) {
+  nlohmann::json signature = sidecar;
+  signature.erase("dataset");  // the folder may move; its manifest checksum stays
+  signature["batch"] = options.batch;
+  signature["learning_rate"] = options.learningRate;
+  signature["seed"] = options.seed;
+  signature["normal_weight"] = normalWeight;
+  signature["edge_weight"] = edgeWeight;
+  return signature;
+}
+
+struct NetworkJob {
+  int patch = -1;
+  fs::path folder;
+  std::unique_ptr<Target> target;
+};
+
+/// Trains one network into `job.folder`.
+NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec spec, const TrainOptions& options,
+                           double normalWeight, double edgeWeight, core::Progress* progress) {
+  const Target& target = *job.target;
+  core::ensureOutputFolder(job.folder);
+  const std::vector<int>& vertexList = target.vertices();
+  const torch::Tensor vertices =
+      torch::tensor(std::vector<std::int64_t>(vertexList.begin(), vertexList.end()), torch::kInt64);
+  const bool geometry = normalWeight > 0 || edgeWeight > 0;
+
+  Model model(spec, options.seed);
+  if (spec.architecture == Architecture::FullyConnectedPca) {
+    Eigen::MatrixXf rows(data.train.size(), 3 * data.garment.mesh.numVertices());
+    for (size_t k = 0; k < data.train.size(); ++k) rows.row(k) = toEigen(target.encode(data.values[data.train[k]]).unsqueeze(0));
+    const PcaBasis basis = fitPca(rows, spec.pcaComponents);
+    model.setPcaBasis(basis.mean, basis.components);
+  }
+  torch::nn::Sequential& net = ModelAccess::network(model);
+  if (data.residual()) {
+    // The last layer starts at zero: an untrained residual model predicts the base, and training only improves on it.
+    torch::NoGradGuard noGrad;
+    std::vector<torch::Tensor> parameters = net->parameters();
+    for (size_t k = parameters.size() >= 2 ? parameters.size() - 2 : 0; k < parameters.size(); ++k)
+      parameters[k].zero_();
+  }
+  torch::optim::Adam adam(net->parameters(), torch::optim::AdamOptions(options.learningRate));
+  const ImageLoss imageLoss = options.loss == "l2" ? ImageLoss::L2 : ImageLoss::L1;
+  const torch::Tensor mask = target.mask().unsqueeze(0);
+
+  nlohmann::json sidecar = modelSidecar(spec, data, job.patch, options.loss);
+  const nlohmann::json signature = signatureOf(sidecar, options, normalWeight, edgeWeight);
+  NetworkReport report;
+  report.patch = job.patch;
+  report.folder = job.folder;
+  const fs::path checkpoint = job.folder / "checkpoint.pt";
+  if (fs::exists(checkpoint)) {
+    loadCheckpoint(checkpoint, signature, net, adam, report);
+    report.resumedAt = static_cast<int>(report.epochs.size());
+  }
+  std::mt19937_64 shuffle(options.seed);
+  auto shuffled = [&] {
+    std::vector<int> order = data.train;
+    for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[shuffle() % i]);
+    return order;
+  };
+  for (int e = 0; e < report.resumedAt; ++e) shuffled();  // the same orders as an uninterrupted run
+
+  for (int epoch = report.resumedAt + 1; epoch <= options.epochs; ++epoch) {
+    const auto start = Clock::now();
+    EpochRecord record;
+    record.epoch = epoch;
+    net->train();
+    int steps = 0;
+    Prefetcher prefetch(data, target, vertices, shuffled(), options.batch, geometry);
+    while (std::optional<Batch> batch = prefetch.next(record.dataWaitSeconds)) {
+      const torch::Tensor output = net->forward(batch->inputs);
+      torch::Tensor value = maskedImageLoss(output, batch->targets, mask, imageLoss);
+      record.loss += value.item<double>();
+      if (geometry) {
+        const torch::Tensor predicted = positionsOf(data.space, target.decode(output), *batch);
+        if (normalWeight > 0) {
+          const torch::Tensor normal = normalLoss(predicted, batch->truth, target.faces());
+          record.normalLoss += normal.item<double>();
+          value = value + normalWeight * normal;
+        }
+        if (edgeWeight > 0) {
+          const torch::Tensor edge = edgeLengthLoss(predicted, batch->truth, target.edges());
+          record.edgeLoss += edge.item<double>();
+          value = value + edgeWeight * edge;
+        }
+      }
+      adam.zero_grad();
+      value.backward();
+      adam.step();
+      ++steps;
+    }
+    record.loss /= steps;
+    record.normalLoss /= steps;
+    record.edgeLoss /= steps;
+    record.trainErrorCm = errorCm(net, target, data, data.train, vertices);
+    record.regularisationErrorCm = errorCm(net, target, data, data.regularisation, vertices);
+    record.seconds = secondsSince(start);
+    report.epochs.push_back(record);
+    // Model selection on the regularisation split (the test split is only for reporting); without one, the last.
+    const bool hasRegularisation = !data.regularisation.empty();
+    if (report.bestEpoch == 0 || !hasRegularisation || record.regularisationErrorCm < report.bestErrorCm) {
+      report.bestEpoch = epoch;
+      report.bestErrorCm = hasRegularisation ? record.regularisationErrorCm : record.trainErrorCm;
+      saveWeights(net, job.folder / "model.pt");
+      sidecar["epoch"] = epoch;
+      sidecar["train_error_cm"] = record.trainErrorCm;
+      sidecar["regularisation_error_cm"] = numberOrNull(record.regularisationErrorCm);
+      core::writeJson(job.folder / "model.json", sidecar);
+    }
+    core::writeTextAtomically(job.folder / "log.csv", csvOf(report.epochs));
+    saveCheckpoint(checkpoint, signature, net, adam, report);  // last: a kill before it redoes this epoch
+    if (progress) progress->advance();
+  }
+  return report;
 }
 
 }  // namespace
 
 void TrainOptions::validate() const {
-  model.validate();
-  PIXELCLOTH_CHECK(
-      model.architecture == Architecture::Whole || model.architecture == Architecture::Necktie,
-      "train: the " << architectureName(model.architecture) << " model is not trainable yet; whole and necktie are");
+  ModelSpec spec = model;  // train() sets the baselines' output size from the dataset; check the rest now
+  if (spec.outputValues == 0) spec.outputValues = std::max(3, spec.pcaComponents);
+  spec.validate();
   PIXELCLOTH_CHECK(loss == "l1" || loss == "l2", "train: loss '" << loss << "', expected l1 or l2");
   PIXELCLOTH_CHECK(epochs >= 1 && epochs <= 100000, "train: " << epochs << " epochs, expected 1 to 100000");
   PIXELCLOTH_CHECK(batch >= 1 && batch <= 4096, "train: batch " << batch << ", expected 1 to 4096");
   PIXELCLOTH_CHECK(std::isfinite(learningRate) && learningRate > 0,
                    "train: learning rate " << learningRate << ", expected > 0");
+  PIXELCLOTH_CHECK(std::isfinite(normalWeight) && std::isfinite(edgeWeight),
+                   "train: the normal and edge weights must be finite");
+  PIXELCLOTH_CHECK(threads >= 0 && threads <= 1024, "train: " << threads << " threads, expected 0 to 1024");
+  PIXELCLOTH_CHECK(patches.empty() || model.architecture == Architecture::Patch,
+                   "train: --patches is for the patch model, not " << architectureName(model.architecture));
+  PIXELCLOTH_CHECK(space != OffsetSpace::Positions || model.architecture == Architecture::FullyConnected ||
+                       model.architecture == Architecture::FullyConnectedPca,
+                   "train: positions are the baselines' space (fc, fc-pca); the decoders predict local or root offsets");
 }
 
-TrainReport trainImageModel(const fs::path& datasetFolder, const fs::path& out, const TrainOptions& options) {
+TrainReport train(const fs::path& datasetFolder, const fs::path& out, const TrainOptions& options) {
   options.validate();
-  const data::Dataset dataset = data::openDataset(datasetFolder);
-  const garment::Garment garment = data::datasetGarment(dataset.info);
-  const ImageCodec codec(garment);
-  PIXELCLOTH_CHECK(options.model.outputShape() == codec.shape(),
-                   "train: the " << architectureName(options.model.architecture) << " model predicts "
-                                 << core::npyShapeString(options.model.outputShape()) << " images; "
-                                 << datasetFolder.string() << " holds the " << garment.name << ", whose images are "
-                                 << core::npyShapeString(codec.shape()));
-  PIXELCLOTH_CHECK(options.model.inputs() == dataset.info.settings.poseSize,
-                   "train: the model takes " << options.model.inputs() << " floats, the poses of "
-                                             << datasetFolder.string() << " have " << dataset.info.settings.poseSize);
-  const std::vector<int> train = dataset.rowsOf(data::Split::Train),
-                         regularisation = dataset.rowsOf(data::Split::Regularisation);
-  PIXELCLOTH_CHECK(!train.empty(), "train: " << datasetFolder.string() << " has no training samples");
+  const auto start = Clock::now();
+  if (options.threads > 0) torch::set_num_threads(options.threads);
+  const data::DatasetInfo info = data::readDatasetInfo(datasetFolder);
+  const bool necktie = info.settings.garment == "necktie";
+  PIXELCLOTH_CHECK((options.model.architecture == Architecture::Necktie) == necktie ||
+                       options.model.architecture == Architecture::FullyConnected ||
+                       options.model.architecture == Architecture::FullyConnectedPca,
+                   "train: the " << architectureName(options.model.architecture) << " model does not fit "
+                                 << datasetFolder.string() << ", which holds the " << info.settings.garment
+                                 << (necktie ? " (use --model necktie, fc or fc-pca)" : " (use whole, patch, fc or fc-pca)"));
+  const OffsetSpace space = options.space.value_or(necktie ? OffsetSpace::Root : OffsetSpace::Local);
+  const double normalWeight = options.normalWeight >= 0 ? options.normalWeight : (necktie ? 0.1 : 0.01);
+  const double edgeWeight = options.edgeWeight >= 0 ? options.edgeWeight : (necktie ? 0.1 : 0.0);
+  const TrainingData data = loadTrainingData(datasetFolder, space, options.residual);
+  PIXELCLOTH_CHECK(!data.train.empty(), "train: " << datasetFolder.string() << " has no training samples");
+
+  ModelSpec spec = options.model;
+  spec.inputSize = static_cast<int>(data.inputs.cols());
+  if (spec.architecture == Architecture::FullyConnected || spec.architecture == Architecture::FullyConnectedPca)
+    spec.outputValues = 3 * data.garment.mesh.numVertices();
+  if (spec.architecture == Architecture::FullyConnectedPca &&
+      spec.pcaComponents > static_cast<int>(data.train.size())) {
+    PIXELCLOTH_WARN("train: " << spec.pcaComponents << " PCA components asked, but the train split has "
+                              << data.train.size() << " samples; using " << data.train.size());
+    spec.pcaComponents = static_cast<int>(data.train.size());
+  }
+  spec.validate();
+
+  std::vector<NetworkJob> jobs;
+  if (spec.architecture == Architecture::Patch) {
+    const std::vector<patches::Patch> patchList = patches::garmentPatches(data.garment);
+    std::vector<int> ids = options.patches;
+    if (ids.empty())
+      for (const patches::Patch& p : patchList) ids.push_back(p.id);
+    for (int id : ids) {
+      PIXELCLOTH_CHECK(id >= 0 && id < static_cast<int>(patchList.size()),
+                       "train --patches: no patch " << id << "; the " << data.garment.name << " has patches 0 to "
+                                                    << patchList.size() - 1);
+      jobs.push_back({id, out / patchFolderName(id), patchCropTarget(data.garment, patchList[id])});
+    }
+  } else {
+    jobs.push_back({-1, out, targetOf(spec.architecture, data.garment, nullptr)});
+  }
+  for (const NetworkJob& job : jobs)
+    PIXELCLOTH_CHECK(summarize(spec).output == job.target->shape(),
+                     "train: the " << architectureName(spec.architecture) << " model predicts "
+                                   << core::npyShapeString(summarize(spec).output) << " but the "
+                                   << data.garment.name << "'s " << (job.patch >= 0 ? "patch crops" : "images")
+                                   << " are " << core::npyShapeString(job.target->shape()));
   core::ensureOutputFolder(out);
 
-  Model model(options.model, options.seed);
-  torch::nn::Sequential& net = ModelAccess::network(model);
-  torch::optim::Adam adam(net->parameters(), torch::optim::AdamOptions(options.learningRate));
-  const ImageLoss loss = options.loss == "l2" ? ImageLoss::L2 : ImageLoss::L1;
-  const nlohmann::json sidecar = {{"format", "pixelcloth.model"},
-                                  {"version", 1},
-                                  {"architecture", architectureName(options.model.architecture)},
-                                  {"width", options.model.width},
-                                  {"inputs", options.model.inputs()},
-                                  {"output", options.model.outputShape()},
-                                  {"garment", garment.name},
-                                  {"offsets", "local"},
-                                  {"loss", options.loss},
-                                  {"dataset", fs::absolute(datasetFolder).string()},
-                                  {"dataset_manifest_crc32", data::fileCrc32(datasetFolder / "manifest.json")}};
   TrainReport report;
-  std::mt19937_64 shuffle(options.seed);
   std::unique_ptr<core::Progress> progress;
-  if (!options.quiet) progress = std::make_unique<core::Progress>("train", options.epochs);
-  for (int epoch = 1; epoch <= options.epochs; ++epoch) {
-    const auto start = std::chrono::steady_clock::now();
-    std::vector<int> order = train;
-    for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[shuffle() % i]);
-    net->train();
-    double lossSum = 0;
-    int steps = 0;
-    for (size_t first = 0; first < order.size(); first += options.batch) {
-      const size_t count = std::min<size_t>(options.batch, order.size() - first);
-      Eigen::MatrixXf poses(count, dataset.info.settings.poseSize);
-      std::vector<torch::Tensor> targets;
-      for (size_t k = 0; k < count; ++k) {
-        poses.row(k) = dataset.pose(order[first + k]).transpose();
-        targets.push_back(codec.image(dataset.offsetsOf(order[first + k])));
-      }
-      const torch::Tensor predicted = net->forward(toTensor(poses));
-      const torch::Tensor value = maskedImageLoss(predicted, torch::stack(targets), codec.mask().unsqueeze(0), loss);
-      adam.zero_grad();
-      value.backward();
-      adam.step();
-      lossSum += value.item<double>();
-      ++steps;
-    }
-    EpochRecord record;
-    record.epoch = epoch;
-    record.loss = lossSum / steps;
-    record.trainErrorCm = vertexErrorCm(net, codec, dataset, train);
-    record.regularisationErrorCm = vertexErrorCm(net, codec, dataset, regularisation);
-    record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    report.epochs.push_back(record);
-    // Model selection on the regularisation split (the test split is only for reporting); without one, the last.
-    const double selection = regularisation.empty() ? -epoch : record.regularisationErrorCm;
-    if (report.bestEpoch == 0 || selection < (regularisation.empty() ? -report.bestEpoch : report.bestErrorCm)) {
-      report.bestEpoch = epoch;
-      report.bestErrorCm = regularisation.empty() ? record.trainErrorCm : record.regularisationErrorCm;
-      saveWeights(net, out / "model.pt");
-      nlohmann::json json = sidecar;
-      json["epoch"] = epoch;
-      json["train_error_cm"] = record.trainErrorCm;
-      json["regularisation_error_cm"] = std::isnan(record.regularisationErrorCm)
-                                            ? nlohmann::json(nullptr)
-                                            : nlohmann::json(record.regularisationErrorCm);
-      core::writeJson(out / "model.json", json);
-    }
-    core::writeTextAtomically(out / "log.csv", csvOf(report.epochs));
-    if (progress) progress->advance();
+  if (!options.quiet)
+    progress = std::make_unique<core::Progress>("train " + std::string(architectureName(spec.architecture)),
+                                                static_cast<std::int64_t>(jobs.size()) * options.epochs);
+  for (NetworkJob& job : jobs) {
+    NetworkReport network = trainNetwork(data, job, spec, options, normalWeight, edgeWeight, progress.get());
+    if (progress && network.resumedAt > 0) progress->advance(std::min(network.resumedAt, options.epochs));
+    report.networks.push_back(std::move(network));
   }
   if (progress) progress->finish();
+  report.seconds = secondsSince(start);
   return report;
-}
-
-Model loadModel(const fs::path& folder) {
-  const fs::path sidecarPath = folder / "model.json", weights = folder / "model.pt";
-  const nlohmann::json json = core::readJson(sidecarPath);
-  const std::string context = sidecarPath.string();
-  PIXELCLOTH_CHECK(core::requireValue<std::string>(json, "format", context) == "pixelcloth.model",
-                   context << ": not a pixelcloth model (format '" << json["format"] << "')");
-  ModelSpec spec;
-  spec.architecture =
-      architectureFromName(core::requireValue<std::string>(json, "architecture", context), context + ": architecture");
-  spec.width = core::requireValue<double>(json, "width", context);
-  spec.inputSize = core::requireValue<int>(json, "inputs", context);
-  spec.validate();
-  Model model(spec);
-  std::error_code ec;
-  PIXELCLOTH_CHECK(fs::is_regular_file(weights, ec), weights.string() << ": no such file (the model's weights)");
-  torch::nn::Sequential& net = ModelAccess::network(model);
-  std::vector<std::vector<std::int64_t>> expected;  // LibTorch's load takes whatever shapes the archive holds
-  for (const torch::Tensor& t : net->parameters()) expected.push_back(t.sizes().vec());
-  for (const torch::Tensor& t : net->buffers()) expected.push_back(t.sizes().vec());
-  try {
-    torch::serialize::InputArchive archive;
-    archive.load_from(weights.string());
-    net->load(archive);
-  } catch (const c10::Error& e) {
-    const std::string what = e.what_without_backtrace();
-    PIXELCLOTH_FAIL(weights.string() << ": not the weights of a " << architectureName(spec.architecture)
-                                     << " network of width " << spec.width
-                                     << " (truncated, or from another model): " << what.substr(0, what.find('\n')));
-  }
-  std::vector<std::vector<std::int64_t>> found;
-  for (const torch::Tensor& t : net->parameters()) found.push_back(t.sizes().vec());
-  for (const torch::Tensor& t : net->buffers()) found.push_back(t.sizes().vec());
-  PIXELCLOTH_CHECK(found == expected, weights.string() << ": its tensors do not have the shapes of a "
-                                                       << architectureName(spec.architecture) << " network of width "
-                                                       << spec.width << " (" << sidecarPath.string() << ")");
-  return model;
-}
-
-Eigen::MatrixXf predictOffsets(const Model& model, const fs::path& datasetFolder, const Eigen::MatrixXf& poses) {
-  const data::DatasetInfo info = data::readDatasetInfo(datasetFolder);
-  const garment::Garment garment = data::datasetGarment(info);
-  const ImageCodec codec(garment);
-  PIXELCLOTH_CHECK(model.spec().outputShape() == codec.shape(),
-                   "predict: the model's images do not fit the " << garment.name << " of " << datasetFolder.string());
-  const Eigen::MatrixXf images = model.forward(poses);
-  const auto shape = codec.shape();
-  Eigen::MatrixXf out(poses.rows(), 3 * garment.mesh.numVertices());
-  for (int r = 0; r < poses.rows(); ++r) {
-    const Eigen::RowVectorXf row = images.row(r);
-    const torch::Tensor image = toTensor(row).reshape(shape);
-    const Eigen::MatrixXf offsets = codec.offsets(image);
-    for (int v = 0; v < offsets.rows(); ++v) out.block<1, 3>(r, 3 * v) = offsets.row(v);
-  }
-  return out;
 }
 
 }  // namespace pixelcloth::learn

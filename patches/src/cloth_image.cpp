@@ -204,4 +204,30 @@ PatchCrop cropFrame(const garment::Garment& garment, const Patch& patch, int ima
   return crop;
 }
 
+std::vector<int> enlargedPatchFaces(const garment::Garment& garment, const Patch& patch, const ImageFrame& frame,
+                                    double context) {
+  PIXELCLOTH_CHECK(context >= 0, "enlarged patch: context " << context << " px, expected >= 0");
+  const core::Mesh& mesh = garment.mesh;
+  std::vector<Eigen::Vector2d> own;
+  for (int f : patch.faces)
+    for (int k = 0; k < 3; ++k) own.push_back(frame.toPixel(mesh.UV.row(mesh.FUV(f, k)).transpose()));
+  std::sort(own.begin(), own.end(), [](const auto& a, const auto& b) { return a.x() < b.x(); });
+  // Nearest corner of the patch, by a sweep over x: corners are sorted, so only those within `context` in x count.
+  auto near = [&](const Eigen::Vector2d& p) {
+    auto first = std::lower_bound(own.begin(), own.end(), p.x() - context,
+                                  [](const Eigen::Vector2d& a, double x) { return a.x() < x; });
+    for (auto it = first; it != own.end() && it->x() <= p.x() + context; ++it)
+      if ((*it - p).squaredNorm() <= context * context) return true;
+    return false;
+  };
+  std::vector<int> faces;
+  for (int f = 0; f < mesh.F.rows(); ++f) {
+    if (garment.faceLayout(f) != patch.layout) continue;
+    bool inside = true;
+    for (int k = 0; k < 3 && inside; ++k) inside = near(frame.toPixel(mesh.UV.row(mesh.FUV(f, k)).transpose()));
+    if (inside) faces.push_back(f);
+  }
+  return faces;
+}
+
 }  // namespace pixelcloth::patches

@@ -8,6 +8,7 @@
 #include <set>
 #include <tuple>
 
+#include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/patches/frame.h"
 
@@ -23,6 +24,10 @@ Eigen::Vector2d uvOf(const garment::Garment& garment, int v, int layout) {
   return garment.mesh.UV.row(row).transpose();
 }
 }  // namespace
+
+std::vector<Patch> garmentPatches(const garment::Garment& garment) {
+  return segmentPatches(garment, cage::cutEdges(cage::garmentCage(garment)));
+}
 
 std::vector<Patch> segmentPatches(const garment::Garment& garment, const std::vector<std::pair<int, int>>& cuts) {
   const core::Mesh& mesh = garment.mesh;

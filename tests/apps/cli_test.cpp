@@ -234,7 +234,11 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
        {"--markers", "--pose", "--body", "--dressing", "--method", "--dataset", "--split", "--noise", "--dropout",
         "--spacing", "--rest-lengths", "--out", "--write-base", "--threads", "--quiet"}},
       {"model", {"--arch", "--width", "--inputs", "--garment", "--values", "--components", "--summary"}},
-      {"train", {"--dataset", "--model", "--width", "--loss", "--epochs", "--batch", "--lr", "--seed", "--out"}},
+      {"train",
+       {"--dataset", "--model", "--patches", "--width", "--components", "--space", "--residual", "--loss",
+        "--normal-weight", "--edge-weight", "--epochs", "--batch", "--lr", "--seed", "--threads", "--out", "--quiet"}},
+      {"predict", {"--model", "--pose", "--markers", "--dataset", "--samples", "--base", "--out"}},
+      {"evaluate", {"--model", "--dataset", "--split", "--base", "--out"}},
   };
   for (const auto& [verb, options] : verbs) {
     SCOPED_TRACE(verb);

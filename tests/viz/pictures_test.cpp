@@ -37,7 +37,7 @@ const pg::Garment& tie() {
 
 const std::vector<pp::Patch>& shirtPatches() {
   static const std::vector<pp::Patch> patches =
-      pp::segmentPatches(shirt(), pixelcloth::cage::cutEdges(pixelcloth::cage::garmentCage(shirt())));
+      pp::garmentPatches(shirt());
   return patches;
 }
 using pixelcloth::testing::inputErrorOf;

@@ -493,7 +493,7 @@ void demoNetworks(Report& report) {
     }
   });
   // A quarter-width necktie decoder trained briefly on the demo's necktie samples (needs demoNecktieDataset).
-  learn::TrainReport trained;
+  learn::NetworkReport trained;
   report.step("training: a quarter-width necktie decoder on the demo's necktie samples", [&] {
     learn::TrainOptions options;
     options.model.architecture = learn::Architecture::Necktie;
@@ -501,7 +501,8 @@ void demoNetworks(Report& report) {
     options.epochs = 60;
     options.batch = 2;
     options.learningRate = 2e-3;
-    trained = learn::trainImageModel(report.folder() / "dataset_necktie", report.folder() / "model_necktie", options);
+    options.quiet = true;
+    trained = learn::train(report.folder() / "dataset_necktie", report.folder() / "model_necktie", options).networks.front();
     writePng(report.folder() / "model_necktie" / "training.png", renderTrainingCurves(trained, "necktie width 0.25"));
     const learn::EpochRecord& best = trained.epochs[trained.bestEpoch - 1];
     report.json()["training"] = {{"model", "necktie"},

@@ -10,7 +10,7 @@
 
 namespace pixelcloth::viz {
 
-core::RgbImage renderTrainingCurves(const learn::TrainReport& report, const std::string& model, int width, int height) {
+core::RgbImage renderTrainingCurves(const learn::NetworkReport& report, const std::string& model, int width, int height) {
   PIXELCLOTH_CHECK(!report.epochs.empty(), "training curves: the report has no epochs");
   PIXELCLOTH_CHECK(width >= 200 && height >= 150, "training curves: " << width << " x " << height << " is too small");
   core::RgbImage image(width, height);

@@ -1,60 +1,83 @@
 #pragma once
 
-// Training a whole-garment image decoder (the whole garment or the necktie) on a dataset's cloth images, with its
-// checkpoint; the patch decoders, the residual mode and the baselines' training come next (issue 12).
+// Training the paper's decoders and the baselines on a dataset (issue 12): cloth images or per-vertex values made on
+// the fly from each sample's offsets, the masked image loss with the optional normal and edge-length losses, Adam,
+// model selection on the regularisation split, and checkpoints a run resumes from.
 
+#include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "pixelcloth/learn/model.h"
+#include "pixelcloth/learn/spaces.h"
 
 namespace pixelcloth::learn {
 
-/// Settings of trainImageModel.
+/// Settings of train().
 struct TrainOptions {
-  ModelSpec model;          ///< whole (T-shirt) or necktie; `model.inputSize` 0 (the pose)
+  /// The architecture and width; train() fills the input size (pose, plus marker features in residual mode) and, for
+  /// the baselines, the output values from the dataset.
+  ModelSpec model;
+  /// Patch decoders: which patches to train (ids; empty: all). Each goes to its own patch_NN/ folder of `out`, so runs
+  /// with different subsets (a job array) fill one model folder.
+  std::vector<int> patches;
   std::string loss = "l1";  ///< "l1" (the paper's) or "l2", masked to the padded UV mask
+  /// What the values mean; the default (unset) is the paper's: root for the necktie, local otherwise.
+  std::optional<OffsetSpace> space;
+  /// Weight of the normal loss (1 - cosine of per-vertex normals); negative: the paper's (0.01 T-shirt, 0.1 necktie).
+  double normalWeight = -1;
+  /// Weight of the edge-length L1 loss; negative: the paper's (0.1 necktie, 0 otherwise).
+  double edgeWeight = -1;
+  /// Residual mode: a base folder of the dataset (`reconstruct --write-base`); the inputs gain the marker features
+  /// and the targets become ground truth minus base. Empty: plain mode (pose in, values out).
+  std::filesystem::path residual;
   int epochs = 20;          ///< passes over the train split, [1, 100000]
   int batch = 8;            ///< samples per Adam step, [1, 4096]
   double learningRate = 1e-3;
-  std::uint64_t seed = 0;  ///< initial weights and the order of the train split in each epoch
-  bool quiet = false;      ///< no progress on stderr
+  std::uint64_t seed = 0;   ///< initial weights and the order of the train split in each epoch
+  int threads = 0;          ///< LibTorch's intra-op threads; 0: its default (one per core)
+  bool quiet = false;       ///< no progress on stderr
   void validate() const;
 };
 
-/// One epoch of training.
+/// One epoch of one network.
 struct EpochRecord {
   int epoch = 0;                     ///< from 1
-  double loss = 0;                   ///< mean training loss of its steps (metres for L1)
+  double loss = 0;                   ///< mean training loss of its steps (image term, metres for L1)
+  double normalLoss = 0;             ///< mean normal term (before its weight); 0 when off
+  double edgeLoss = 0;               ///< mean edge-length term, metres; 0 when off
   double trainErrorCm = 0;           ///< mean per-vertex error on the train split after the epoch, cm
   double regularisationErrorCm = 0;  ///< the same on the regularisation split (NaN when it is empty)
   double seconds = 0;
+  double dataWaitSeconds = 0;        ///< of those, waiting for the prefetch thread's next batch
 };
 
-/// What trainImageModel did.
-struct TrainReport {
+/// What training one network did.
+struct NetworkReport {
+  int patch = -1;  ///< the patch id of a patch decoder, -1 otherwise
+  std::filesystem::path folder;
   std::vector<EpochRecord> epochs;
   int bestEpoch = 0;  ///< the epoch whose weights model.pt holds: lowest regularisation error (else the last)
   double bestErrorCm = std::numeric_limits<double>::quiet_NaN();
+  int resumedAt = 0;  ///< epochs found done in the folder's checkpoint (0: a fresh start)
 };
 
-/// Trains `options.model` on the train split of a finished dataset folder: each sample's cloth image made on the fly
-/// from its offsets by the raster operators (patches::ClothImager), the masked image loss, Adam. Per-vertex errors
-/// come from sampling the predicted image back at the cloth pixels. Writes into `out` (created, or an existing folder):
-/// model.pt (LibTorch archive of the best epoch's weights), model.json (architecture, width, input and output
-/// shapes, garment, dataset folder and its manifest checksum, epoch, errors) and log.csv (one row per epoch), each
-/// atomically. Throws InputError for a model that does not fit the dataset's garment or pose size.
-TrainReport trainImageModel(const std::filesystem::path& dataset, const std::filesystem::path& out,
-                            const TrainOptions& options);
+struct TrainReport {
+  std::vector<NetworkReport> networks;
+  double seconds = 0;
+};
 
-/// A model folder written by trainImageModel: the network rebuilt from model.json, its weights from model.pt. Throws
-/// InputError naming the file for a missing, truncated or foreign checkpoint.
-Model loadModel(const std::filesystem::path& folder);
-
-/// Cloth images predicted for `poses` (#poses x model inputs) as per-vertex offsets of the dataset garment's cloth
-/// pixels (#poses rows, each #V x 3 in C order): the image sampled back at the cloth pixels.
-Eigen::MatrixXf predictOffsets(const Model& model, const std::filesystem::path& dataset, const Eigen::MatrixXf& poses);
+/// Trains `options.model` on the train split of a finished dataset folder and writes into `out` (created, or an
+/// existing folder): per network model.pt (LibTorch archive of the best epoch's weights), model.json (architecture,
+/// width, inputs, output, garment, space, loss, dataset and its manifest checksum, base folder, patch, epoch, errors),
+/// log.csv (one row per epoch) and checkpoint.pt (the last epoch's weights and optimizer state), each atomically;
+/// patch decoders in patch_NN/ subfolders. Run again with the same arguments, it resumes from checkpoint.pt (after a
+/// kill -9 too) and ends with the weights of an uninterrupted run; more epochs extend a finished run. Throws
+/// InputError for a model that does not fit the dataset, a base folder of another dataset, or a folder holding a run
+/// with other settings.
+TrainReport train(const std::filesystem::path& dataset, const std::filesystem::path& out, const TrainOptions& options);
 
 }  // namespace pixelcloth::learn

@@ -107,4 +107,11 @@ struct PatchCrop {
 PatchCrop cropFrame(const garment::Garment& garment, const Patch& patch, int imageSize = 512, int cropSize = 160,
                     const RasterOptions& options = {});
 
+/// The enlarged patch whose crop a patch decoder predicts (DESIGN.md, "Stitching"): the faces of the patch's layout
+/// whose three corners lie within `context` pixels of `frame` (a crop of the 512 x 512 image) of a corner of the patch.
+/// It holds the patch and about two rings of its neighbours (16 px at 512: 2.3 cm on the T-shirt), so neighbouring
+/// patches predict the vertices around the cage curve between them. Sorted.
+std::vector<int> enlargedPatchFaces(const garment::Garment& garment, const Patch& patch, const ImageFrame& frame,
+                                    double context = 16);
+
 }  // namespace pixelcloth::patches

@@ -35,6 +35,9 @@ struct PatchMesh {
 /// becomes a patch. Throws InputError if a patch's boundary is not one simple loop (e.g. a cut that ends inside).
 std::vector<Patch> segmentPatches(const garment::Garment& garment, const std::vector<std::pair<int, int>>& cuts);
 
+/// The garment's patches along its own cage's cuts (cage::garmentCage): the T-shirt's 28, the necktie's.
+std::vector<Patch> garmentPatches(const garment::Garment& garment);
+
 /// The patch's own mesh: its faces in the UV space of its layout, with local indices.
 PatchMesh patchMesh(const garment::Garment& garment, const Patch& patch);
 

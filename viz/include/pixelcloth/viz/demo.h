@@ -15,6 +15,7 @@ struct DemoOptions {
   int poses = 12;          ///< random poses shown
   int filterPoses = 200;   ///< poses drawn, pruned and simulated for the filtering histograms
   int tshirtSamples = 40;  ///< the simulated T-shirt dataset; its test split is rebuilt from markers
+  int learningEpochs = 8;  ///< epochs of each learned model on that dataset
   std::uint64_t seed = 1;
 };
 
@@ -66,5 +67,10 @@ void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions&
 /// The paper's decoders and the fully connected baselines at full and quarter width: parameters, shapes and forward
 /// cost, and one forward pass of each quarter-width decoder timed on this machine.
 void demoNetworks(Report& report);
+
+/// The learned models on the T-shirt dataset (needs demoTShirtDataset): a whole-garment decoder, the 28 patch
+/// decoders and the residual patch decoders on the marker reconstruction of each sample, trained briefly and
+/// compared on the test split with the marker reconstruction alone.
+void demoLearning(Report& report, const body::Body& body, const DemoOptions& demo);
 
 }  // namespace pixelcloth::viz

@@ -73,9 +73,9 @@ void writeCageFolder(const garment::Garment& garment, const std::filesystem::pat
 void writeDressingFolder(const body::Body& body, const garment::Garment& garment, const cage::Dressing& dressing,
                          const std::filesystem::path& out);
 
-/// Training curves of a learn::TrainReport: per-vertex error (cm, log scale) on the train split (blue) and the
+/// Training curves of a learn::NetworkReport: per-vertex error (cm, log scale) on the train split (blue) and the
 /// regularisation split (orange) against the epoch, the best epoch marked, under a title naming `model`.
-core::RgbImage renderTrainingCurves(const learn::TrainReport& report, const std::string& model, int width = 640,
+core::RgbImage renderTrainingCurves(const learn::NetworkReport& report, const std::string& model, int width = 640,
                                     int height = 360);
 
 }  // namespace pixelcloth::viz

@@ -1,0 +1,63 @@
+// pixelcloth evaluate: a trained model's errors on one split of a dataset, with per-vertex error maps.
+#include "pixelcloth/stitch/evaluate.h"
+
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/image.h"
+#include "pixelcloth/core/json_io.h"
+#include "pixelcloth/viz/pictures.h"
+#include "prediction_inputs.h"
+#include "verbs.h"
+
+namespace pixelcloth::apps {
+
+namespace {
+struct EvaluateArgs {
+  std::string model, dataset, split = "test", base, out;
+};
+
+void runEvaluate(const EvaluateArgs& args) {
+  core::checkOutputFolder(args.out);
+  const PredictionInputs inputs = datasetPredictionInputs(args.model, args.dataset, args.base);
+  const stitch::Evaluation evaluation = stitch::evaluate(*inputs.model, inputs.data, args.split);
+  nlohmann::json metrics = evaluation.metrics;
+  metrics["model"] = args.model;
+  metrics["architecture"] = learn::architectureName(inputs.model->architecture());
+  metrics["residual"] = inputs.model->residual();
+  metrics["dataset"] = args.dataset;
+  core::ensureOutputFolder(args.out);
+  core::writeJson(std::filesystem::path(args.out) / "metrics.json", metrics);
+  std::ostringstream title;
+  title << std::fixed << std::setprecision(3) << args.split << " split, " << metrics["samples"].get<int>()
+        << " samples: mean vertex error " << metrics["vertex_error_cm"].get<double>() << " cm (scale 0 to 1 cm)";
+  core::writePng(std::filesystem::path(args.out) / "error_maps.png",
+                 viz::renderPatternValues(inputs.data.garment, evaluation.vertexErrorCm, 1.0, title.str(), 384));
+  std::cout << std::fixed << std::setprecision(3) << args.split << ": " << metrics["samples"].get<int>()
+            << " samples, vertex error " << metrics["vertex_error_cm"].get<double>() << " cm, normal cosine "
+            << metrics["normal_cosine"].get<double>();
+  if (inputs.model->residual())
+    std::cout << " (marker reconstruction alone: " << metrics["base_vertex_error_cm"].get<double>() << " cm)";
+  std::cout << " -> " << args.out << "/{metrics.json, error_maps.png}\n";
+}
+}  // namespace
+
+void registerEvaluate(CLI::App& app) {
+  auto args = std::make_shared<EvaluateArgs>();
+  CLI::App* verb = app.add_subcommand(
+      "evaluate", "A trained model's errors on a dataset split: metrics.json and per-vertex error maps");
+  verb->add_option("--model", args->model, "Model folder (pixelcloth train)")->required();
+  verb->add_option("--dataset", args->dataset, "Dataset folder")->required();
+  verb->add_option("--split", args->split, "train, regularisation or test")
+      ->check(CLI::IsMember({"train", "regularisation", "test"}))
+      ->capture_default_str();
+  verb->add_option("--base", args->base,
+                   "Residual models: the dataset's base folder (default: the one the model was trained with)");
+  verb->add_option("--out", args->out, "Output folder: metrics.json, error_maps.png")->required();
+  verb->callback([args] { runEvaluate(*args); });
+}
+
+}  // namespace pixelcloth::apps

@@ -1,0 +1,100 @@
+// pixelcloth predict: garments from a trained model, for a pose (and its markers) or for dataset samples.
+#include "pixelcloth/learn/predict.h"
+
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "pixelcloth/body/pose_io.h"
+#include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/error.h"
+#include "pixelcloth/core/log.h"
+#include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/data/dataset.h"
+#include "pixelcloth/learn/training_data.h"
+#include "pixelcloth/patches/cloth_image.h"
+#include "pixelcloth/stitch/evaluate.h"
+#include "pixelcloth/viz/pictures.h"
+#include "prediction_inputs.h"
+#include "verbs.h"
+
+namespace pixelcloth::apps {
+
+namespace {
+namespace fs = std::filesystem;
+
+struct PredictArgs {
+  std::string model, pose, markers, dataset, base, out;
+  std::vector<int> samples;
+};
+
+/// <name>.obj (the garment), <name>.exr (its cloth image of local offsets) and <name>.png (a preview).
+void writeGarment(const fs::path& out, const std::string& name, const garment::Garment& garment,
+                  const patches::ClothImager& imager, const Eigen::MatrixX3d& positions,
+                  const garment::EmbeddedFrames& frames) {
+  core::Mesh mesh = garment.mesh;
+  mesh.V = positions;
+  core::writeMesh(out / (name + ".obj"), mesh);
+  patches::ClothImage image = imager.rasterize(garment::offsetsFromPositions(frames, positions).cast<float>());
+  patches::writeClothImage(out / (name + ".exr"), image);
+  core::writePng(out / (name + ".png"), viz::renderClothImage(image));
+}
+
+void runPredict(const PredictArgs& args) {
+  PIXELCLOTH_CHECK(args.pose.empty() != args.samples.empty(),
+                   "predict: give --pose P.json, or --dataset D with --samples i,j (not both)");
+  PIXELCLOTH_CHECK(args.samples.empty() || !args.dataset.empty(), "predict: --samples needs --dataset");
+  PIXELCLOTH_CHECK(args.markers.empty() || !args.pose.empty(),
+                   "predict: --markers goes with --pose (dataset samples take their markers from the base folder)");
+  core::checkOutputFolder(args.out);
+  const PredictionInputs inputs = args.pose.empty()
+                                      ? datasetPredictionInputs(args.model, args.dataset, args.base)
+                                      : posePredictionInputs(args.model, args.pose, args.markers, args.dataset);
+  std::vector<int> rows;
+  for (int sample : args.samples) {
+    const int row = sample - inputs.data.info.settings.first();
+    PIXELCLOTH_CHECK(row >= 0 && row < inputs.data.rows(),
+                     "predict --samples " << sample << ": " << inputs.data.folder.string() << " holds samples "
+                                          << inputs.data.info.settings.first() << " to "
+                                          << inputs.data.info.settings.end() - 1);
+    rows.push_back(row);
+  }
+  if (rows.empty()) rows.push_back(0);  // the pose form: one row
+  const stitch::RowPredictions predicted = stitch::predictRows(*inputs.model, inputs.data, rows);
+  core::ensureOutputFolder(args.out);
+  const patches::ClothImager imager(inputs.data.garment);
+  std::cout << std::fixed << std::setprecision(3);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "sample_%06d", args.samples.empty() ? 0 : args.samples[k]);
+    const std::string stem = args.pose.empty() ? name : "garment";
+    writeGarment(args.out, stem, inputs.data.garment, imager, predicted.positions[k], inputs.data.frames[rows[k]]);
+    std::cout << (fs::path(args.out) / (stem + ".obj")).string();
+    if (args.pose.empty())
+      std::cout << ": " << 100 * (predicted.positions[k] - inputs.data.truth[rows[k]].cast<double>()).rowwise().norm().mean()
+                << " cm mean vertex error";
+    std::cout << "\n";
+  }
+}
+}  // namespace
+
+void registerPredict(CLI::App& app) {
+  auto args = std::make_shared<PredictArgs>();
+  CLI::App* verb = app.add_subcommand(
+      "predict", "Garments from a trained model (pixelcloth train), for a pose or for dataset samples: OBJ, EXR, PNG");
+  verb->add_option("--model", args->model, "Model folder (one network, or patch_NN/ folders)")->required();
+  verb->add_option("--pose", args->pose, "Pose file (pixelcloth pose); the body and garment are the model's dataset's");
+  verb->add_option("--markers", args->markers, "With --pose, for a residual model: the garment's markers (M.json)");
+  verb->add_option("--dataset", args->dataset,
+                   "Dataset folder: with --samples, the samples to predict; with --pose, the body and garment "
+                   "(default: the model's training dataset)");
+  verb->add_option("--samples", args->samples, "With --dataset: sample indices, e.g. 0,5,17")->delimiter(',');
+  verb->add_option("--base", args->base,
+                   "Residual models: the dataset's base folder (default: the one the model was trained with)");
+  verb->add_option("--out", args->out, "Output folder: garment.obj/.exr/.png, or sample_NNNNNN.* per sample")
+      ->required();
+  verb->callback([args] { runPredict(*args); });
+}
+
+}  // namespace pixelcloth::apps

@@ -1,0 +1,43 @@
+#pragma once
+
+// Model folders on disk (learn/-internal): the JSON sidecar, the weights archive, and the training checkpoint that
+// a run resumes from.
+
+#include <torch/torch.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "pixelcloth/learn/model.h"
+#include "pixelcloth/learn/train.h"
+#include "pixelcloth/learn/training_data.h"
+
+namespace pixelcloth::learn {
+
+/// "patch_07".
+std::string patchFolderName(int patch);
+
+/// model.json before its epoch and errors: {"format": "pixelcloth.model", "version", "architecture", "width",
+/// "inputs", "output", "values", "pca_components", "garment", "vertices", "pose_size", "markers", "space", "loss",
+/// "dataset", "dataset_manifest_crc32", "residual": {"folder", "manifest_crc32"} | null, "patch": id | null}.
+nlohmann::json modelSidecar(const ModelSpec& spec, const TrainingData& data, int patch, const std::string& loss);
+
+/// The spec a sidecar describes, checked (InputError naming `context`).
+ModelSpec specOfSidecar(const nlohmann::json& sidecar, const std::string& context);
+
+/// Writes the network's weights and buffers as a LibTorch archive, atomically.
+void saveWeights(const torch::nn::Sequential& net, const std::filesystem::path& path);
+/// Loads weights into `net`, checking every tensor's shape (LibTorch's own load takes any): InputError naming the
+/// file for a missing, truncated or foreign archive.
+void loadWeights(torch::nn::Sequential& net, const std::filesystem::path& path, const std::string& what);
+
+/// checkpoint.pt: the weights, the optimizer's state, the epochs so far and the run's signature, in one archive
+/// written atomically.
+void saveCheckpoint(const std::filesystem::path& path, const nlohmann::json& signature,
+                    const torch::nn::Sequential& net, torch::optim::Adam& adam, const NetworkReport& report);
+/// Restores them; InputError when the file is damaged or its signature differs (naming the first setting that does).
+void loadCheckpoint(const std::filesystem::path& path, const nlohmann::json& signature, torch::nn::Sequential& net,
+                    torch::optim::Adam& adam, NetworkReport& report);
+
+}  // namespace pixelcloth::learn

@@ -1,0 +1,154 @@
+#include "pixelcloth/learn/predict.h"
+
+#include <torch/torch.h>
+
+#include <algorithm>
+
+#include "checkpoint.h"
+#include "model_impl.h"
+#include "pixelcloth/core/error.h"
+#include "pixelcloth/core/json_io.h"
+#include "pixelcloth/patches/patch.h"
+#include "target.h"
+#include "tensor.h"
+
+namespace pixelcloth::learn {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Network {
+  int patch = -1;
+  nlohmann::json sidecar;
+  Model model;
+  std::unique_ptr<Target> target;
+};
+
+/// The settings every network of one model folder must share.
+nlohmann::json sharedPart(nlohmann::json sidecar) {
+  for (const char* key : {"patch", "epoch", "train_error_cm", "regularisation_error_cm"}) sidecar.erase(key);
+  return sidecar;
+}
+
+/// Every network folder of a model folder, with its patch id (-1 for a single network), by patch.
+std::vector<std::pair<int, fs::path>> networkFolders(const fs::path& folder) {
+  std::vector<std::pair<int, fs::path>> found;
+  std::error_code ec;
+  if (fs::exists(folder / "model.json", ec)) return {{-1, folder}};
+  PIXELCLOTH_CHECK(fs::is_directory(folder, ec), folder.string() << ": no such model folder");
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_directory() && name.rfind("patch_", 0) == 0 && fs::exists(entry.path() / "model.json"))
+      found.push_back({std::atoi(name.c_str() + 6), entry.path()});
+  }
+  std::sort(found.begin(), found.end());
+  PIXELCLOTH_CHECK(!found.empty(), folder.string() << ": no model.json, and no patch_NN/model.json (not a model "
+                                                      "folder from pixelcloth train)");
+  return found;
+}
+
+}  // namespace
+
+fs::path trainingDatasetOf(const fs::path& modelFolder) {
+  const fs::path sidecar = networkFolders(modelFolder).front().second / "model.json";
+  return core::requireValue<std::string>(core::readJson(sidecar), "dataset", sidecar.string());
+}
+
+struct TrainedModel::Impl {
+  fs::path folder;
+  std::vector<Network> networks;
+};
+
+TrainedModel::TrainedModel(const fs::path& folder, const garment::Garment& garment) : impl_(std::make_unique<Impl>()) {
+  impl_->folder = folder;
+  const std::vector<std::pair<int, fs::path>> found = networkFolders(folder);
+  std::vector<patches::Patch> patchList;
+  for (const auto& [patchId, path] : found) {
+    const fs::path sidecarPath = path / "model.json";
+    const std::string context = sidecarPath.string();
+    nlohmann::json sidecar = core::readJson(sidecarPath);
+    const ModelSpec spec = specOfSidecar(sidecar, context);
+    PIXELCLOTH_CHECK(core::requireValue<int>(sidecar, "vertices", context) == garment.mesh.numVertices() &&
+                         core::requireValue<std::string>(sidecar, "garment", context) == garment.name,
+                     context << ": a model of the " << sidecar.value("garment", "?") << " with "
+                             << sidecar.value("vertices", 0) << " vertices, not of this " << garment.name << " with "
+                             << garment.mesh.numVertices());
+    const patches::Patch* patch = nullptr;
+    if (spec.architecture == Architecture::Patch) {
+      if (patchList.empty()) patchList = patches::garmentPatches(garment);
+      const int id = core::requireValue<int>(sidecar, "patch", context);
+      PIXELCLOTH_CHECK(id == patchId || patchId < 0, context << ": the model of patch " << id << " in a folder for patch "
+                                                             << patchId);
+      PIXELCLOTH_CHECK(id >= 0 && id < static_cast<int>(patchList.size()),
+                       context << ": patch " << id << ", but the " << garment.name << " has " << patchList.size());
+      patch = &patchList[id];
+    }
+    if (!impl_->networks.empty())
+      PIXELCLOTH_CHECK(sharedPart(sidecar) == sharedPart(impl_->networks.front().sidecar),
+                       context << ": trained with other settings than "
+                               << (impl_->folder / patchFolderName(impl_->networks.front().patch) / "model.json").string()
+                               << " (architecture, width, dataset, space or base differ)");
+    Network network{patch ? patch->id : -1, sidecar, Model(spec), targetOf(spec.architecture, garment, patch)};
+    PIXELCLOTH_CHECK(summarize(spec).output == network.target->shape(),
+                     context << ": its output does not fit the " << garment.name);
+    loadWeights(ModelAccess::network(network.model), path / "model.pt",
+                std::string("a ") + architectureName(spec.architecture) + " network of width " +
+                    std::to_string(spec.width) + " (" + context + ")");
+    impl_->networks.push_back(std::move(network));
+  }
+}
+
+TrainedModel::~TrainedModel() = default;
+TrainedModel::TrainedModel(TrainedModel&&) noexcept = default;
+
+const fs::path& TrainedModel::folder() const { return impl_->folder; }
+const nlohmann::json& TrainedModel::sidecar() const { return impl_->networks.front().sidecar; }
+Architecture TrainedModel::architecture() const { return impl_->networks.front().model.spec().architecture; }
+OffsetSpace TrainedModel::space() const {
+  return offsetSpaceFromName(sidecar().value("space", ""), (impl_->folder / "model.json").string() + ": space");
+}
+int TrainedModel::inputs() const { return impl_->networks.front().model.spec().inputs(); }
+int TrainedModel::poseSize() const { return sidecar().value("pose_size", 0); }
+int TrainedModel::markers() const { return sidecar().value("markers", 0); }
+bool TrainedModel::residual() const { return sidecar().contains("residual") && !sidecar()["residual"].is_null(); }
+fs::path TrainedModel::baseFolder() const {
+  return residual() ? fs::path(sidecar()["residual"].value("folder", "")) : fs::path();
+}
+
+std::vector<int> TrainedModel::patches() const {
+  std::vector<int> ids;
+  for (const Network& n : impl_->networks)
+    if (n.patch >= 0) ids.push_back(n.patch);
+  return ids;
+}
+
+void TrainedModel::checkDataset(const data::DatasetInfo& dataset) const {
+  PIXELCLOTH_CHECK(dataset.settings.vertexCount == sidecar().value("vertices", -1) &&
+                       dataset.settings.poseSize == poseSize(),
+                   dataset.folder.string() << " holds the " << dataset.settings.garment << " ("
+                                           << dataset.settings.vertexCount << " vertices, poses of "
+                                           << dataset.settings.poseSize << "); the model in "
+                                           << impl_->folder.string() << " is for the " << sidecar().value("garment", "?")
+                                           << " (" << sidecar().value("vertices", -1) << " vertices, poses of "
+                                           << poseSize() << ")");
+}
+
+std::vector<NetworkPrediction> TrainedModel::predict(const Eigen::MatrixXf& inputs) const {
+  PIXELCLOTH_CHECK(inputs.cols() == this->inputs() && inputs.rows() > 0,
+                   "predict: " << inputs.rows() << " x " << inputs.cols() << " inputs, expected batch x "
+                               << this->inputs() << " (pose " << poseSize() << " + 3 x " << markers() << " markers)");
+  PIXELCLOTH_CHECK(inputs.allFinite(), "predict: the inputs are not all finite");
+  torch::NoGradGuard noGrad;
+  std::vector<NetworkPrediction> out;
+  const torch::Tensor x = toTensor(inputs);
+  for (Network& n : impl_->networks) {
+    torch::nn::Sequential& net = ModelAccess::network(n.model);
+    net->eval();
+    const torch::Tensor values = n.target->decode(net->forward(x));  // B x vertices x 3
+    out.push_back({n.patch, n.target->vertices(), toEigen(values)});
+  }
+  return out;
+}
+
+}  // namespace pixelcloth::learn

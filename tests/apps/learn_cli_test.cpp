@@ -1,0 +1,232 @@
+// train, predict and evaluate run as programs on a small simulated T-shirt dataset: every model trains and predicts,
+// patch decoders trained by separate runs fill one folder, a killed run resumes to the same weights, and bad input
+// exits 2 naming the file without writing anything.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "pixelcloth/core/mesh.h"
+#include "pixelcloth/core/mesh_io.h"
+#include "support/cli.h"
+#include "support/test_util.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using pixelcloth::testing::capture;
+using pixelcloth::testing::CliRun;
+using pixelcloth::testing::filesUnder;
+using pixelcloth::testing::quote;
+using pixelcloth::testing::readFile;
+using pixelcloth::testing::refused;
+using pixelcloth::testing::runPixelcloth;
+using pixelcloth::testing::writeFile;
+
+/// 8 simulated shirts (6 train, 1 regularisation, 1 test) and their base folder, made once per test process.
+struct SharedData {
+  fs::path root, dataset, bases;
+  bool ok = false;
+  CliRun run;
+};
+
+const SharedData& shared() {
+  static const SharedData data = [] {
+    SharedData d;
+    d.root = fs::temp_directory_path() / "pixelcloth-tests" / ("learn-cli." + std::to_string(::getpid()));
+    fs::remove_all(d.root);
+    fs::create_directories(d.root);
+    d.dataset = d.root / "shirts";
+    d.bases = d.root / "bases";
+    d.run = runPixelcloth({"generate", "--count", "8", "--seed", "3", "--out", d.dataset.string(), "--quiet"});
+    if (d.run.status != 0) return d;
+    d.run = runPixelcloth({"reconstruct", "--dataset", d.dataset.string(), "--write-base", d.bases.string(), "--quiet"});
+    d.ok = d.run.status == 0;
+    return d;
+  }();
+  return data;
+}
+
+class LearnCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(shared().ok) << "making the shared dataset failed" << shared().run;
+    work_ = pixelcloth::testing::freshDir("work");
+  }
+  static fs::path dataset() { return shared().dataset; }
+  static fs::path bases() { return shared().bases; }
+  /// pixelcloth train on the shared dataset with `args` added, expected to succeed.
+  static void train(std::initializer_list<std::string> args) {
+    std::vector<std::string> words = {"train", "--dataset", dataset().string(), "--quiet"};
+    words.insert(words.end(), args.begin(), args.end());
+    std::string command = quote(PIXELCLOTH_BINARY);
+    for (const std::string& w : words) command += " " + quote(w);
+    const CliRun run = capture(command);
+    ASSERT_EQ(run.status, 0) << run;
+  }
+  static nlohmann::json metricsOf(const fs::path& model, const fs::path& out) {
+    const CliRun run = runPixelcloth(
+        {"evaluate", "--model", model.string(), "--dataset", dataset().string(), "--out", out.string()});
+    EXPECT_EQ(run.status, 0) << run;
+    return nlohmann::json::parse(readFile(out / "metrics.json"));
+  }
+  fs::path work_;
+};
+
+TEST_F(LearnCli, EveryModelTrainsPredictsAndIsEvaluated) {
+  for (const char* model : {"whole", "fc", "fc-pca"}) {
+    SCOPED_TRACE(model);
+    const fs::path out = work_ / model;
+    train({"--model", model, "--width", "0.0625", "--epochs", "2", "--components", "6", "--out", out.string()});
+    const nlohmann::json metrics = metricsOf(out, work_ / (std::string(model) + "_eval"));
+    EXPECT_EQ(metrics["split"], "test");
+    EXPECT_EQ(metrics["samples"], 1);
+    EXPECT_GT(metrics["vertex_error_cm"].get<double>(), 0);
+    EXPECT_LT(metrics["vertex_error_cm"].get<double>(), 100);
+    EXPECT_EQ(metrics["patches"].size(), 28u);
+    EXPECT_TRUE(fs::exists(work_ / (std::string(model) + "_eval") / "error_maps.png"));
+  }
+  // predict, dataset form: an OBJ, EXR and PNG per sample, and the error it printed is the evaluation's.
+  const fs::path predicted = work_ / "predicted";
+  CliRun run = runPixelcloth({"predict", "--model", (work_ / "whole").string(), "--dataset", dataset().string(),
+                              "--samples", "0,7", "--out", predicted.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_EQ(filesUnder(predicted), (std::vector<std::string>{"sample_000000.exr", "sample_000000.obj",
+                                                             "sample_000000.png", "sample_000007.exr",
+                                                             "sample_000007.obj", "sample_000007.png"}));
+  EXPECT_EQ(pixelcloth::core::readMesh(predicted / "sample_000000.obj").numVertices(), 2989);
+  // predict, pose form.
+  run = runPixelcloth({"markers", "--dataset", dataset().string(), "--sample", "2", "--pose-out",
+                       (work_ / "pose.json").string(), "--out", (work_ / "markers.json").string()});
+  ASSERT_EQ(run.status, 0) << run;
+  run = runPixelcloth({"predict", "--model", (work_ / "fc").string(), "--pose", (work_ / "pose.json").string(), "--out",
+                       (work_ / "posed").string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_TRUE(fs::exists(work_ / "posed" / "garment.obj"));
+}
+
+TEST_F(LearnCli, PatchDecodersFromTwoRunsMakeOneModelAndResidualOnesStartAtTheBase) {
+  const fs::path plain = work_ / "patch", residual = work_ / "residual";
+  train({"--model", "patch", "--width", "0.03125", "--epochs", "1", "--patches", "0,1,2,3,4,5,6,7,8,9,10,11,12,13",
+         "--out", plain.string()});
+  // Half the patches: evaluation refuses, naming the missing ones and the command that trains them.
+  EXPECT_TRUE(refused(runPixelcloth({"evaluate", "--model", plain.string(), "--dataset", dataset().string(), "--out",
+                                     (work_ / "half").string()}),
+                      {"missing: 14,15", "--patches 14,15"}));
+  EXPECT_FALSE(fs::exists(work_ / "half"));
+  train({"--model", "patch", "--width", "0.03125", "--epochs", "1", "--patches",
+         "14,15,16,17,18,19,20,21,22,23,24,25,26,27", "--out", plain.string()});
+  EXPECT_GT(metricsOf(plain, work_ / "plain_eval")["vertex_error_cm"].get<double>(), 0);
+
+  // Residual mode: an untrained model predicts the base, so one epoch is already near the markers' garment.
+  train({"--model", "patch", "--width", "0.03125", "--epochs", "1", "--residual", bases().string(), "--out",
+         residual.string()});
+  const nlohmann::json metrics = metricsOf(residual, work_ / "residual_eval");
+  const double base = metrics["base_vertex_error_cm"].get<double>(), learned = metrics["vertex_error_cm"].get<double>();
+  std::cout << "[residual patches, 1 epoch, 6 train samples] test error " << learned << " cm, markers alone " << base
+            << " cm\n";
+  EXPECT_GT(base, 0.1);
+  EXPECT_LT(learned, 2 * base);
+
+  // predict with markers: the residual model rebuilds the base from them.
+  CliRun run = runPixelcloth({"markers", "--dataset", dataset().string(), "--sample", "7", "--pose-out",
+                              (work_ / "pose.json").string(), "--out", (work_ / "markers.json").string()});
+  ASSERT_EQ(run.status, 0) << run;
+  run = runPixelcloth({"predict", "--model", residual.string(), "--pose", (work_ / "pose.json").string(), "--markers",
+                       (work_ / "markers.json").string(), "--out", (work_ / "from_markers").string()});
+  ASSERT_EQ(run.status, 0) << run;
+  // The same sample from the dataset form (its base from the base folder): the same garment.
+  run = runPixelcloth({"predict", "--model", residual.string(), "--dataset", dataset().string(), "--samples", "7",
+                       "--out", (work_ / "from_dataset").string()});
+  ASSERT_EQ(run.status, 0) << run;
+  const Eigen::MatrixX3d a = pixelcloth::core::readMesh(work_ / "from_markers" / "garment.obj").V,
+                         b = pixelcloth::core::readMesh(work_ / "from_dataset" / "sample_000007.obj").V;
+  EXPECT_LT((a - b).rowwise().norm().maxCoeff(), 1e-4);
+  // Without markers it cannot.
+  EXPECT_TRUE(refused(runPixelcloth({"predict", "--model", residual.string(), "--pose", (work_ / "pose.json").string(),
+                                     "--out", (work_ / "no_markers").string()}),
+                      {"residual model", "--markers"}));
+  EXPECT_FALSE(fs::exists(work_ / "no_markers"));
+}
+
+TEST_F(LearnCli, AKilledRunResumesToTheWeightsOfAnUninterruptedOne) {
+  const fs::path whole = work_ / "uninterrupted", killed = work_ / "killed";
+  const std::vector<std::string> args = {"--model", "fc", "--width", "0.25", "--epochs", "150", "--batch", "2"};
+  auto command = [&](const fs::path& out) {
+    std::string c = quote(PIXELCLOTH_BINARY) + " train --dataset " + quote(dataset().string()) + " --quiet";
+    for (const std::string& a : args) c += " " + quote(a);
+    return c + " --out " + quote(out.string());
+  };
+  ASSERT_EQ(capture(command(whole)).status, 0);
+  // Start the same run in the background and kill -9 it once a few epochs are in its checkpoint.
+  const CliRun started = capture(command(killed) + " >/dev/null 2>&1 & echo $!");
+  const int pid = std::stoi(started.out);
+  const auto start = std::chrono::steady_clock::now();
+  auto epochsLogged = [&] {
+    const std::string log = readFile(killed / "log.csv");
+    return static_cast<int>(std::count(log.begin(), log.end(), '\n')) - 1;
+  };
+  while (epochsLogged() < 5 && std::chrono::steady_clock::now() - start < std::chrono::seconds(120))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_EQ(::kill(pid, SIGKILL), 0);
+  capture("while kill -0 " + std::to_string(pid) + " 2>/dev/null; do sleep 0.05; done");
+  const int done = epochsLogged();
+  std::cout << "[fc] killed after " << done << " of 150 epochs\n";
+  ASSERT_LT(done, 150) << "the run ended before it was killed; nothing was tested";
+  ASSERT_EQ(capture(command(killed)).status, 0);
+  EXPECT_EQ(readFile(whole / "model.pt"), readFile(killed / "model.pt"));
+  EXPECT_EQ(nlohmann::json::parse(readFile(whole / "model.json"))["epoch"],
+            nlohmann::json::parse(readFile(killed / "model.json"))["epoch"]);
+}
+
+TEST_F(LearnCli, BadInputIsRefusedNamingTheFile) {
+  const fs::path model = work_ / "model";
+  train({"--model", "fc", "--width", "0.125", "--epochs", "1", "--out", model.string()});
+  // A pose of the wrong size.
+  writeFile(work_ / "short_pose.json", R"({"pose": [1, 0, 0, 0, 1, 0, 0, 0, 1]})");
+  EXPECT_TRUE(refused(runPixelcloth({"predict", "--model", model.string(), "--pose",
+                                     (work_ / "short_pose.json").string(), "--out", (work_ / "a").string()}),
+                      {"short_pose.json"}));
+  EXPECT_FALSE(fs::exists(work_ / "a"));
+  // A truncated checkpoint.
+  const fs::path broken = work_ / "broken";
+  fs::copy(model, broken);
+  const std::string weights = readFile(model / "model.pt");
+  writeFile(broken / "model.pt", weights.substr(0, weights.size() / 2));
+  EXPECT_TRUE(refused(runPixelcloth({"evaluate", "--model", broken.string(), "--dataset", dataset().string(), "--out",
+                                     (work_ / "b").string()}),
+                      {"model.pt", "truncated"}));
+  EXPECT_FALSE(fs::exists(work_ / "b"));
+  // A model trained on another garment's dataset.
+  const CliRun tie = runPixelcloth({"generate", "--garment", "necktie", "--count", "3", "--seed", "5", "--out",
+                                    (work_ / "tie").string(), "--quiet"});
+  ASSERT_EQ(tie.status, 0) << tie;
+  EXPECT_TRUE(refused(runPixelcloth({"evaluate", "--model", model.string(), "--dataset", (work_ / "tie").string(),
+                                     "--out", (work_ / "c").string()}),
+                      {"model.json", "tshirt", "necktie"}));
+  EXPECT_FALSE(fs::exists(work_ / "c"));
+  // A base folder of another dataset.
+  CliRun run = runPixelcloth(
+      {"reconstruct", "--dataset", (work_ / "tie").string(), "--write-base", (work_ / "tie_bases").string(), "--quiet"});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_TRUE(refused(runPixelcloth({"train", "--dataset", dataset().string(), "--model", "fc", "--residual",
+                                     (work_ / "tie_bases").string(), "--out", (work_ / "d").string()}),
+                      {"tie_bases", "manifest"}));
+  EXPECT_FALSE(fs::exists(work_ / "d"));
+  // --patches for a model that has none, and a patch that does not exist.
+  EXPECT_TRUE(refused(runPixelcloth({"train", "--dataset", dataset().string(), "--model", "whole", "--patches", "3",
+                                     "--out", (work_ / "e").string()}),
+                      {"--patches"}));
+  EXPECT_TRUE(refused(runPixelcloth({"train", "--dataset", dataset().string(), "--model", "patch", "--patches", "3,x",
+                                     "--out", (work_ / "e").string()}),
+                      {"--patches"}));
+  EXPECT_FALSE(fs::exists(work_ / "e"));
+  // Another run's settings in the output folder.
+  EXPECT_TRUE(refused(runPixelcloth({"train", "--dataset", dataset().string(), "--model", "fc", "--width", "0.125",
+                                     "--epochs", "2", "--lr", "0.01", "--out", model.string()}),
+                      {"checkpoint.pt", "learning_rate"}));
+}
+
+}  // namespace

@@ -8,16 +8,20 @@
 
 namespace pixelcloth::learn {
 
+/// Where models run: the GPU when this LibTorch build has CUDA and one is present (Debian's is CPU-only), else the CPU.
+inline torch::Device defaultDevice() { return torch::cuda::is_available() ? torch::kCUDA : torch::kCPU; }
+
 struct Model::Impl {
   ModelSpec spec;
   torch::nn::Sequential net;
-  torch::Device device{torch::kCPU};
+  torch::Device device{defaultDevice()};
 };
 
 /// The LibTorch network of a model, for training and checkpoints.
 struct ModelAccess {
   static torch::nn::Sequential& network(Model& model) { return model.impl_->net; }
   static const torch::nn::Sequential& network(const Model& model) { return model.impl_->net; }
+  static torch::Device device(const Model& model) { return model.impl_->device; }
 };
 
 }  // namespace pixelcloth::learn

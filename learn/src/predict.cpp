@@ -90,6 +90,7 @@ TrainedModel::TrainedModel(const fs::path& folder, const garment::Garment& garme
                                << (impl_->folder / patchFolderName(impl_->networks.front().patch) / "model.json").string()
                                << " (architecture, width, dataset, space or base differ)");
     Network network{patch ? patch->id : -1, sidecar, Model(spec), targetOf(spec.architecture, garment, patch)};
+    network.target->to(ModelAccess::device(network.model));
     PIXELCLOTH_CHECK(summarize(spec).output == network.target->shape(),
                      context << ": its output does not fit the " << garment.name);
     loadWeights(ModelAccess::network(network.model), path / "model.pt",
@@ -145,7 +146,7 @@ std::vector<NetworkPrediction> TrainedModel::predict(const Eigen::MatrixXf& inpu
   for (Network& n : impl_->networks) {
     torch::nn::Sequential& net = ModelAccess::network(n.model);
     net->eval();
-    const torch::Tensor values = n.target->decode(net->forward(x));  // B x vertices x 3
+    const torch::Tensor values = n.target->decode(net->forward(x.to(ModelAccess::device(n.model))));  // B x n x 3
     out.push_back({n.patch, n.target->vertices(), toEigen(values)});
   }
   return out;

@@ -42,6 +42,11 @@ class WholeImageTarget : public Target {
     return torch::stack(channels);
   }
 
+  void to(const torch::Device& device) override {
+    Target::to(device);
+    for (torch::Tensor& s : samplers_) s = s.to(device);
+  }
+
   torch::Tensor decode(const torch::Tensor& output) const override {
     torch::Tensor sum;
     for (size_t l = 0; l < samplers_.size(); ++l) {
@@ -77,6 +82,11 @@ class PatchCropTarget : public Target {
 
   torch::Tensor decode(const torch::Tensor& output) const override { return sampleImage(sampler_, output); }
 
+  void to(const torch::Device& device) override {
+    Target::to(device);
+    sampler_ = sampler_.to(device);
+  }
+
  private:
   patches::RasterOperator raster_;
   torch::Tensor sampler_;
@@ -105,6 +115,12 @@ class VertexTarget : public Target {
 };
 
 }  // namespace
+
+void Target::to(const torch::Device& device) {
+  mask_ = mask_.to(device);
+  faces_ = faces_.to(device);
+  edges_ = edges_.to(device);
+}
 
 void Target::setMesh(const garment::Garment& garment, const std::vector<int>& garmentFaces) {
   std::vector<int> local(garment.mesh.numVertices(), -1);

@@ -33,6 +33,8 @@ class Target {
   virtual torch::Tensor encode(const Eigen::MatrixXf& values) const = 0;
   /// Per-vertex values of outputs (B x shape()): B x vertices().size() x 3, differentiable.
   virtual torch::Tensor decode(const torch::Tensor& output) const = 0;
+  /// Moves the mask, the mesh and the sample operators to `device` (encode() still makes CPU tensors).
+  virtual void to(const torch::Device& device);
 
  protected:
   /// Fills faces_ and edges_ from garment faces whose corners are all in vertices_.

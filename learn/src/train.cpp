@@ -42,6 +42,11 @@ struct Batch {
   std::vector<int> rows;
   torch::Tensor inputs, targets;           ///< B x inputs; B x target shape
   torch::Tensor origin, t, b, n, base, truth;  ///< B x n x 3 each (geometry only)
+
+  void to(const torch::Device& device) {
+    for (torch::Tensor* tensor : {&inputs, &targets, &origin, &t, &b, &n, &base, &truth})
+      if (tensor->defined()) *tensor = tensor->to(device);
+  }
 };
 
 /// Rows of per-row #V x 3 matrices at the target's vertices, as B x n x 3.
@@ -154,7 +159,7 @@ torch::Tensor positionsOf(OffsetSpace space, const torch::Tensor& values, const 
 /// Mean per-vertex distance (cm) between the network's values and the targets over `rows`, on the target's vertices
 /// (frames are orthonormal, so in every space it is the position error); NaN for no rows.
 double errorCm(torch::nn::Sequential& net, const Target& target, const TrainingData& data, const std::vector<int>& rows,
-               const torch::Tensor& vertices) {
+               const torch::Tensor& vertices, const torch::Device& device) {
   if (rows.empty()) return std::numeric_limits<double>::quiet_NaN();
   torch::NoGradGuard noGrad;
   net->eval();
@@ -163,8 +168,8 @@ double errorCm(torch::nn::Sequential& net, const Target& target, const TrainingD
     const std::vector<int> chunk(rows.begin() + first, rows.begin() + std::min(rows.size(), first + 16));
     Eigen::MatrixXf inputs(chunk.size(), data.inputs.cols());
     for (size_t k = 0; k < chunk.size(); ++k) inputs.row(k) = data.inputs.row(chunk[k]);
-    const torch::Tensor predicted = target.decode(net->forward(toTensor(inputs)));
-    sum += (predicted - gather(data.values, chunk, vertices)).norm(2, 2).mean(1).sum().item<double>();
+    const torch::Tensor predicted = target.decode(net->forward(toTensor(inputs).to(device)));
+    sum += (predicted - gather(data.values, chunk, vertices).to(device)).norm(2, 2).mean(1).sum().item<double>();
   }
   return 100 * sum / rows.size();
 }
@@ -202,6 +207,9 @@ struct NetworkJob {
 /// Trains one network into `job.folder`.
 NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec spec, const TrainOptions& options,
                            double normalWeight, double edgeWeight, core::Progress* progress) {
+  Model model(spec, options.seed);
+  const torch::Device device = ModelAccess::device(model);
+  job.target->to(device);
   const Target& target = *job.target;
   core::ensureOutputFolder(job.folder);
   const std::vector<int>& vertexList = target.vertices();
@@ -209,7 +217,6 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
       torch::tensor(std::vector<std::int64_t>(vertexList.begin(), vertexList.end()), torch::kInt64);
   const bool geometry = normalWeight > 0 || edgeWeight > 0;
 
-  Model model(spec, options.seed);
   if (spec.architecture == Architecture::FullyConnectedPca) {
     Eigen::MatrixXf rows(data.train.size(), 3 * data.garment.mesh.numVertices());
     for (size_t k = 0; k < data.train.size(); ++k) rows.row(k) = toEigen(target.encode(data.values[data.train[k]]).unsqueeze(0));
@@ -217,8 +224,9 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
     model.setPcaBasis(basis.mean, basis.components);
   }
   torch::nn::Sequential& net = ModelAccess::network(model);
-  if (data.residual()) {
-    // The last layer starts at zero: an untrained residual model predicts the base, and training only improves on it.
+  {
+    // The last layer starts at zero: an untrained model predicts zero offsets (the base, in residual mode), not the
+    // random images of LibTorch's default initialisation, whose values are tens of centimetres.
     torch::NoGradGuard noGrad;
     std::vector<torch::Tensor> parameters = net->parameters();
     for (size_t k = parameters.size() >= 2 ? parameters.size() - 2 : 0; k < parameters.size(); ++k)
@@ -226,7 +234,7 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
   }
   torch::optim::Adam adam(net->parameters(), torch::optim::AdamOptions(options.learningRate));
   const ImageLoss imageLoss = options.loss == "l2" ? ImageLoss::L2 : ImageLoss::L1;
-  const torch::Tensor mask = target.mask().unsqueeze(0);
+  const torch::Tensor mask = target.mask().unsqueeze(0);  // already on the device
 
   nlohmann::json sidecar = modelSidecar(spec, data, job.patch, options.loss);
   const nlohmann::json signature = signatureOf(sidecar, options, normalWeight, edgeWeight);
@@ -254,6 +262,7 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
     int steps = 0;
     Prefetcher prefetch(data, target, vertices, shuffled(), options.batch, geometry);
     while (std::optional<Batch> batch = prefetch.next(record.dataWaitSeconds)) {
+      batch->to(device);
       const torch::Tensor output = net->forward(batch->inputs);
       torch::Tensor value = maskedImageLoss(output, batch->targets, mask, imageLoss);
       record.loss += value.item<double>();
@@ -278,8 +287,8 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
     record.loss /= steps;
     record.normalLoss /= steps;
     record.edgeLoss /= steps;
-    record.trainErrorCm = errorCm(net, target, data, data.train, vertices);
-    record.regularisationErrorCm = errorCm(net, target, data, data.regularisation, vertices);
+    record.trainErrorCm = errorCm(net, target, data, data.train, vertices, device);
+    record.regularisationErrorCm = errorCm(net, target, data, data.regularisation, vertices, device);
     record.seconds = secondsSince(start);
     report.epochs.push_back(record);
     // Model selection on the regularisation split (the test split is only for reporting); without one, the last.

@@ -33,9 +33,9 @@ struct DemoModel {
 const std::vector<DemoModel>& demoModels() {
   static const std::vector<DemoModel> models = {
       {"whole", "model_whole", "whole garment, pose in", learn::Architecture::Whole, 0.125, false},
-      {"patch", "model_patch", "28 patches, pose in", learn::Architecture::Patch, 0.0625, false},
+      {"patch", "model_patch", "28 patches, pose in", learn::Architecture::Patch, 0.125, false},
       {"residual_patch", "model_residual_patch", "28 patches, residual on the markers' garment",
-       learn::Architecture::Patch, 0.0625, true}};
+       learn::Architecture::Patch, 0.125, true}};
   return models;
 }
 
@@ -81,6 +81,11 @@ void demoLearning(Report& report, const body::Body& body, const DemoOptions& dem
     std::vector<core::RgbImage> maps;
     std::vector<std::vector<core::RgbImage>> rows;  // per shown sample: ground truth, then each model
     std::vector<int> shown;
+    auto posedBody = [&](const learn::TrainingData& data, int row) {
+      body::Body posed = body;
+      posed.mesh = body.posedMesh(body::Pose::fromLeading(data.inputs.row(row).head(data.poseSize).transpose()));
+      return posed;
+    };
     for (const DemoModel& m : demoModels()) {
       const learn::TrainedModel model(report.folder() / m.folder, shirt);
       const learn::TrainingData data =
@@ -104,8 +109,7 @@ void demoLearning(Report& report, const body::Body& body, const DemoOptions& dem
         for (int r : shown) {
           garment::Garment truth = shirt;
           truth.mesh.V = data.truth[r].cast<double>();
-          body::Body posed = body;
-          posed.mesh = body.posedMesh(body::Pose::fromLeading(data.inputs.row(r).head(data.poseSize).transpose()));
+          const body::Body posed = posedBody(data, r);
           core::RgbImage picture = renderGarmentOnBody(truth, &posed, 220);
           drawText(picture, {8, 8}, "ground truth", {0, 0, 0}, 2);
           rows.push_back({picture});
@@ -115,9 +119,7 @@ void demoLearning(Report& report, const body::Body& body, const DemoOptions& dem
       for (size_t k = 0; k < shown.size(); ++k) {
         garment::Garment g = shirt;
         g.mesh.V = predicted.positions[k];
-        body::Body posed = body;
-        posed.mesh =
-            body.posedMesh(body::Pose::fromLeading(data.inputs.row(shown[k]).head(data.poseSize).transpose()));
+        const body::Body posed = posedBody(data, shown[k]);
         core::RgbImage picture = renderGarmentOnBody(g, &posed, 220);
         std::ostringstream label;
         label << std::fixed << std::setprecision(2) << m.name << " "

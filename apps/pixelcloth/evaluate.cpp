@@ -33,7 +33,7 @@ void runEvaluate(const EvaluateArgs& args) {
   metrics["dataset"] = args.dataset;
   core::ensureOutputFolder(args.out);
   core::writeJson(std::filesystem::path(args.out) / "metrics.json", metrics);
-  // The fixed scale (0 to 1 cm), and one that stretches to the 95th percentile for models worse than that.
+  // Blue 0, white 0.5, red 1 cm and more; below, the same stretched to the 95th percentile for models worse than that.
   std::ostringstream title, stretched;
   title << std::fixed << std::setprecision(3) << args.split << " split, " << metrics["samples"].get<int>()
         << " samples: mean vertex error " << metrics["vertex_error_cm"].get<double>() << " cm (scale 0 to 1 cm)";
@@ -43,9 +43,9 @@ void runEvaluate(const EvaluateArgs& args) {
   stretched << std::fixed << std::setprecision(2) << "the same, scale 0 to " << high << " cm (95th percentile)";
   core::writePng(std::filesystem::path(args.out) / "error_maps.png",
                  viz::contactSheet({viz::renderPatternValues(inputs.data.garment, evaluation.vertexErrorCm, 1.0,
-                                                             title.str(), 384),
+                                                             title.str(), 384, true),
                                     viz::renderPatternValues(inputs.data.garment, evaluation.vertexErrorCm, high,
-                                                             stretched.str(), 384)},
+                                                             stretched.str(), 384, true)},
                                    1));
   std::cout << std::fixed << std::setprecision(3) << args.split << ": " << metrics["samples"].get<int>()
             << " samples, vertex error " << metrics["vertex_error_cm"].get<double>() << " cm, normal cosine "

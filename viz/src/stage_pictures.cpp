@@ -103,7 +103,7 @@ core::RgbImage renderClothImage(const ClothImage& image, const PreviewOptions& o
 }
 
 core::RgbImage renderPatternValues(const garment::Garment& garment, const Eigen::VectorXd& values, double maxValue,
-                                   const std::string& title, int size) {
+                                   const std::string& title, int size, bool blueToRed) {
   PIXELCLOTH_CHECK(values.size() == garment.mesh.numVertices(),
                    "pattern picture: " << values.size() << " values for " << garment.mesh.numVertices() << " vertices");
   const int titleHeight = 24, gap = 8, layouts = garment.numLayouts();
@@ -122,7 +122,7 @@ core::RgbImage renderPatternValues(const garment::Garment& garment, const Eigen:
         corner[k] =
             frame.toPixel(garment.mesh.UV.row(garment.mesh.FUV(f, k)).transpose()) + Eigen::Vector2d(x0, titleHeight);
       }
-      const Eigen::Vector3d c = viz::colorRamp(std::clamp(mean / scale, 0.0, 1.0));
+      const Eigen::Vector3d c = viz::colorRamp(std::clamp(mean / scale, 0.0, 1.0), blueToRed);
       viz::fillTriangle(image, corner[0], corner[1], corner[2],
                         {static_cast<std::uint8_t>(255 * c.x()), static_cast<std::uint8_t>(255 * c.y()),
                          static_cast<std::uint8_t>(255 * c.z())});

@@ -53,10 +53,10 @@ void writePosedBodies(const std::filesystem::path& folder, const body::Body& bod
                       const nlohmann::json& info = nlohmann::json::object());
 
 /// Per-vertex values (#V, e.g. errors in metres) drawn in pattern space: each layout in its own `size` x `size`
-/// cloth-image frame, faces coloured by the mean of their vertices on a dark-blue-to-yellow ramp from 0 to `maxValue`,
-/// under a title row. Layouts side by side.
+/// cloth-image frame, faces coloured by the mean of their vertices on a dark-blue-to-yellow ramp from 0 to `maxValue`
+/// (`blueToRed`: blue, white, red), under a title row. Layouts side by side.
 core::RgbImage renderPatternValues(const garment::Garment& garment, const Eigen::VectorXd& values, double maxValue,
-                                   const std::string& title, int size = 256);
+                                   const std::string& title, int size = 256, bool blueToRed = false);
 
 /// The error maps of reconstructDataset's methods, one row each on one colour scale (the largest mean vertex error of
 /// any method, at least 1 cm), titled with the method and its mean error.

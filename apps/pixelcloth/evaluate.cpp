@@ -37,9 +37,7 @@ void runEvaluate(const EvaluateArgs& args) {
   std::ostringstream title, stretched;
   title << std::fixed << std::setprecision(3) << args.split << " split, " << metrics["samples"].get<int>()
         << " samples: mean vertex error " << metrics["vertex_error_cm"].get<double>() << " cm (scale 0 to 1 cm)";
-  Eigen::VectorXd sorted = evaluation.vertexErrorCm;
-  std::sort(sorted.data(), sorted.data() + sorted.size());
-  const double high = std::max(1e-3, sorted(static_cast<Eigen::Index>(0.95 * (sorted.size() - 1))));
+  const double high = std::max(1e-3, evaluation.vertexErrorQuantileCm(0.95));
   stretched << std::fixed << std::setprecision(2) << "the same, scale 0 to " << high << " cm (95th percentile)";
   core::writePng(std::filesystem::path(args.out) / "error_maps.png",
                  viz::contactSheet({viz::renderPatternValues(inputs.data.garment, evaluation.vertexErrorCm, 1.0,

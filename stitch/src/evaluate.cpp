@@ -1,5 +1,6 @@
 #include "pixelcloth/stitch/evaluate.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "pixelcloth/core/error.h"
@@ -52,6 +53,13 @@ RowPredictions predictRows(const learn::TrainedModel& model, const learn::Traini
     }
   }
   return out;
+}
+
+double Evaluation::vertexErrorQuantileCm(double q) const {
+  PIXELCLOTH_CHECK(vertexErrorCm.size() > 0 && q >= 0 && q <= 1, "evaluation: quantile " << q << " of no errors");
+  Eigen::VectorXd sorted = vertexErrorCm;
+  std::sort(sorted.data(), sorted.data() + sorted.size());
+  return sorted(static_cast<Eigen::Index>(q * (sorted.size() - 1)));
 }
 
 Evaluation evaluate(const learn::TrainedModel& model, const learn::TrainingData& data, const std::string& split) {

@@ -105,9 +105,7 @@ void demoLearning(Report& report, const body::Body& body, const DemoOptions& dem
         table["markers_alone"] = {{"split", split}, {"vertex_error_cm", evaluation.metrics["base_vertex_error_cm"]}};
       // Each map on its own scale, 0 to its 95th percentile: the pose-only models are off by centimetres, the residual
       // one by millimetres.
-      Eigen::VectorXd sorted = evaluation.vertexErrorCm;
-      std::sort(sorted.data(), sorted.data() + sorted.size());
-      const double high = std::max(1e-3, sorted(static_cast<Eigen::Index>(0.95 * (sorted.size() - 1))));
+      const double high = std::max(1e-3, evaluation.vertexErrorQuantileCm(0.95));
       std::ostringstream title;
       title << std::fixed << std::setprecision(2) << m.name << ": " << split << " error "
             << evaluation.metrics["vertex_error_cm"].get<double>() << " cm, scale 0 to " << high << " cm";

@@ -32,6 +32,8 @@ struct Evaluation {
   /// marker reconstruction alone; null otherwise), "patches": [{"id", "layout", "vertices", "vertex_error_cm"}]}.
   nlohmann::json metrics;
   Eigen::VectorXd vertexErrorCm;  ///< #V: each vertex's mean error over the split, cm
+  /// The `q`-quantile (0 to 1) of vertexErrorCm, cm: e.g. the top of an error map's colour scale.
+  double vertexErrorQuantileCm(double q) const;
 };
 
 /// Predicts every row of `split` and compares with ground truth. Throws InputError for an empty split.

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "pixelcloth/body/body.h"
 #include "pixelcloth/cage/body_cage.h"
@@ -21,6 +22,9 @@
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
 #include "pixelcloth/garment/garment.h"
+#include "pixelcloth/learn/inference.h"
+#include "pixelcloth/learn/model.h"
+#include "pixelcloth/learn/speed.h"
 #include "pixelcloth/patches/frame.h"
 #include "pixelcloth/patches/garment_fill.h"
 #include "pixelcloth/patches/raster.h"
@@ -53,6 +57,63 @@ double medianSeconds(int repeats, F&& work) {
 void emit(const std::string& name, double value, const std::string& unit, double goal) {
   std::cout << nlohmann::ordered_json{{"name", name}, {"value", value}, {"unit", unit}, {"goal", goal}}.dump()
             << std::endl;
+}
+
+/// A figure of the learned path, with the same run's sgemm peak beside it (and the bar, where the goal has one).
+void emitLearned(const std::string& name, double value, const std::string& unit, double goal, double bar,
+                 double peakGflops, bool higherIsBetter = false) {
+  nlohmann::ordered_json line{{"name", name}, {"value", value}, {"unit", unit}, {"goal", goal}};
+  if (bar > 0) line["bar"] = bar;
+  line["peak_gflops"] = peakGflops;
+  if (higherIsBetter) line["higher_is_better"] = true;
+  std::cout << line.dump() << std::endl;
+}
+
+/// Issue 13: the decoders at the paper's width (1), their inference by the oneDNN engine and by LibTorch, and a
+/// training step, against OpenBLAS's sgemm on every core measured in the same run.
+void benchLearning(int repeats) {
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const double peak = learn::sgemmGflops(4096, cores);
+  emitLearned("learn.sgemm_4096", peak, "GFLOP/s", 0, 0, peak, true);
+
+  learn::ModelSpec patchSpec;  // the patch decoder, pose in, width 1
+  std::vector<learn::Model> decoders;
+  for (std::uint64_t p = 0; p < 28; ++p) decoders.emplace_back(patchSpec, p);
+  std::vector<const learn::Model*> pointers;
+  for (const learn::Model& m : decoders) pointers.push_back(&m);
+  const learn::CompiledNetworks compiled(pointers, cores);
+  const double frameGflop = 28 * learn::summarize(patchSpec).gflopForward;
+  std::vector<learn::RowsF> outputs;
+  const learn::RowsF pose = learn::RowsF::Random(1, patchSpec.inputs()), poses = learn::RowsF::Random(16, 90);
+  compiled.forward(pose, outputs);  // primitives and weight layouts, once
+  const int frames = std::max(5, 2 * repeats);
+  const double patchMs = 1e3 * medianSeconds(frames, [&] { compiled.forward(pose, outputs); });
+  emitLearned("learn.patch_inference", patchMs, "ms", 110, 150, peak);
+  std::cerr << "bench: 28 patch decoders, batch 1: " << frameGflop / patchMs * 1e3 << " GFLOP/s, "
+            << 100 * frameGflop / patchMs * 1e3 / peak << "% of sgemm peak" << std::endl;
+  compiled.forward(poses, outputs);
+  const double batchMs = 1e3 * medianSeconds(std::max(3, repeats), [&] { compiled.forward(poses, outputs); }) / 16;
+  emitLearned("learn.patch_inference_batch16", batchMs, "ms", 100, 100, peak);
+  const double torchMs = 1e3 * medianSeconds(std::max(3, repeats), [&] {
+    for (const learn::Model& m : decoders) m.forward(pose);
+  });
+  emitLearned("learn.patch_inference_libtorch", torchMs, "ms", 0, 0, peak);
+
+  learn::ModelSpec wholeSpec;
+  wholeSpec.architecture = learn::Architecture::Whole;
+  const learn::Model whole(wholeSpec, 1);
+  const learn::CompiledNetworks wholeCompiled({&whole}, cores);
+  wholeCompiled.forward(pose, outputs);
+  emitLearned("learn.whole_inference",
+              1e3 * medianSeconds(std::max(5, 2 * repeats), [&] { wholeCompiled.forward(pose, outputs); }), "ms", 8, 8,
+              peak);
+
+  const int batch = 32;
+  const double stepSeconds = learn::trainStepSeconds(patchSpec, batch, std::max(3, repeats), cores);
+  const double trainGflops = 3 * learn::summarize(patchSpec).gflopForward * batch / stepSeconds;
+  emitLearned("learn.patch_train", trainGflops, "GFLOP/s", 0.45 * peak, 0.30 * peak, peak, true);
+  std::cerr << "bench: patch decoder training step at batch 32: " << stepSeconds << " s, "
+            << 100 * trainGflops / peak << "% of sgemm peak" << std::endl;
 }
 
 void runBench(int repeats) {
@@ -139,7 +200,14 @@ void registerBench(CLI::App& app) {
   verb->add_option("--repeats", *repeats, "Runs per figure (the median is reported)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
-  verb->callback([repeats] { runBench(*repeats); });
+  auto only = std::make_shared<std::string>("all");
+  verb->add_option("--only", *only, "Which figures: all, procedural (body to simulation and files) or learn")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"all", "procedural", "learn"}));
+  verb->callback([repeats, only] {
+    if (*only != "learn") runBench(*repeats);
+    if (*only != "procedural") benchLearning(*repeats);
+  });
 }
 
 }  // namespace pixelcloth::apps

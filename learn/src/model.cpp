@@ -170,17 +170,6 @@ LayerSummary summaryOf(const Layer& l, const std::vector<std::int64_t>& input) {
   return s;
 }
 
-/// mean + coefficients x components, a fixed (non-trainable) basis.
-struct PcaDecodeImpl : torch::nn::Module {
-  PcaDecodeImpl(std::int64_t components, std::int64_t values) {
-    mean = register_buffer("mean", torch::zeros({values}));
-    basis = register_buffer("components", torch::zeros({components, values}));
-  }
-  torch::Tensor forward(const torch::Tensor& coefficients) { return mean + coefficients.matmul(basis); }
-  torch::Tensor mean, basis;
-};
-TORCH_MODULE(PcaDecode);
-
 torch::nn::Sequential buildNetwork(const std::vector<Layer>& layers) {
   torch::nn::Sequential net;
   for (const Layer& l : layers) {

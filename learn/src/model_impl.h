@@ -11,6 +11,17 @@ namespace pixelcloth::learn {
 /// Where models run: the GPU when this LibTorch build has CUDA and one is present (Debian's is CPU-only), else the CPU.
 inline torch::Device defaultDevice() { return torch::cuda::is_available() ? torch::kCUDA : torch::kCPU; }
 
+/// mean + coefficients x components, a fixed (non-trainable) basis.
+struct PcaDecodeImpl : torch::nn::Module {
+  PcaDecodeImpl(std::int64_t components, std::int64_t values) {
+    mean = register_buffer("mean", torch::zeros({values}));
+    basis = register_buffer("components", torch::zeros({components, values}));
+  }
+  torch::Tensor forward(const torch::Tensor& coefficients) { return mean + coefficients.matmul(basis); }
+  torch::Tensor mean, basis;
+};
+TORCH_MODULE(PcaDecode);
+
 struct Model::Impl {
   ModelSpec spec;
   torch::nn::Sequential net;

@@ -1,0 +1,412 @@
+// The oneDNN inference engine: a model's LibTorch layers folded into a short list of operations (inner products,
+// transposed convolutions, convolutions, each with its ReLU), compiled per batch size into primitives whose weight
+// layouts the kernels choose, run over the networks of a frame on all cores.
+#include "pixelcloth/learn/inference.h"
+
+#include <omp.h>
+#include <torch/torch.h>
+
+#include <map>
+#include <oneapi/dnnl/dnnl.hpp>
+#include <thread>
+
+#include "model_impl.h"
+#include "pixelcloth/core/enum_names.h"
+#include "pixelcloth/core/error.h"
+
+namespace pixelcloth::learn {
+
+namespace {
+
+const core::EnumNames<Engine, 2> kEngines{"engine", {{{Engine::LibTorch, "libtorch"}, {Engine::OneDnn, "onednn"}}}};
+
+using Tag = dnnl::memory::format_tag;
+using Dims = dnnl::memory::dims;
+constexpr auto kF32 = dnnl::memory::data_type::f32;
+
+std::int64_t product(const std::vector<std::int64_t>& shape) {
+  std::int64_t n = 1;
+  for (std::int64_t d : shape) n *= d;
+  return n;
+}
+
+std::vector<float> copyOf(const torch::Tensor& t) {
+  const torch::Tensor c = t.detach().to(torch::kCPU, torch::kFloat32).contiguous();
+  return std::vector<float>(c.data_ptr<float>(), c.data_ptr<float>() + c.numel());
+}
+
+/// One layer once BatchNorm is folded in: y = relu?(W x + b).
+struct Op {
+  enum class Kind { InnerProduct, Deconvolution, Convolution } kind;
+  std::vector<std::int64_t> in, out;  ///< one sample's shape: {features} or {channels, height, width}
+  std::int64_t kernel = 1, stride = 1, padding = 0;
+  bool relu = false;
+  /// InnerProduct: out x in; Deconvolution: LibTorch's in x out x k x k; Convolution: out x in x k x k.
+  std::vector<float> weights;
+  std::vector<float> bias;  ///< one per output feature or channel
+  Op(Kind k, std::vector<std::int64_t> inShape, std::vector<std::int64_t> outShape)
+      : kind(k), in(std::move(inShape)), out(std::move(outShape)) {}
+  std::int64_t outChannels() const { return out[0]; }
+};
+
+/// Folds y = gamma (x - mean) / sqrt(var + eps) + beta into the op that made x.
+void foldBatchNorm(Op& op, const torch::nn::BatchNorm2dImpl& bn) {
+  const std::vector<float> gamma = copyOf(bn.weight), beta = copyOf(bn.bias), mean = copyOf(bn.running_mean),
+                           var = copyOf(bn.running_var);
+  const std::int64_t channels = static_cast<std::int64_t>(gamma.size());
+  std::vector<float> scale(channels), shift(channels);
+  for (std::int64_t c = 0; c < channels; ++c) {
+    scale[c] = gamma[c] / std::sqrt(var[c] + static_cast<float>(bn.options.eps()));
+    shift[c] = beta[c] - scale[c] * mean[c];
+  }
+  // Which channel each output feature belongs to, and where each output's weights are.
+  const std::int64_t outputs = op.out[0];
+  PIXELCLOTH_ASSERT(outputs % channels == 0, "batch norm of " << channels << " channels after " << outputs);
+  const std::int64_t perChannel = outputs / channels;  // an inner product unflattened to channels x rows x columns
+  if (op.kind == Op::Kind::Deconvolution) {          // in x out x k x k
+    const std::int64_t k2 = op.kernel * op.kernel, in = op.in[0];
+    for (std::int64_t i = 0; i < in; ++i)
+      for (std::int64_t o = 0; o < outputs; ++o)
+        for (std::int64_t t = 0; t < k2; ++t) op.weights[(i * outputs + o) * k2 + t] *= scale[o];
+  } else {  // out x (everything else)
+    const std::int64_t row = static_cast<std::int64_t>(op.weights.size()) / outputs;
+    for (std::int64_t o = 0; o < outputs; ++o)
+      for (std::int64_t t = 0; t < row; ++t) op.weights[o * row + t] *= scale[o / perChannel];
+  }
+  for (std::int64_t o = 0; o < outputs; ++o) op.bias[o] = scale[o / perChannel] * op.bias[o] + shift[o / perChannel];
+}
+
+/// The ops of a model's LibTorch network, in eval mode.
+std::vector<Op> opsOf(const Model& model) {
+  const torch::nn::Sequential& net = ModelAccess::network(model);
+  std::vector<std::int64_t> shape{model.spec().inputs()};
+  std::vector<Op> ops;
+  // The BatchNorm after an inner product acts on its output unflattened; `ops.back().out` keeps the flat size.
+  for (const std::shared_ptr<torch::nn::Module>& child : net->children()) {
+    if (const auto* linear = child->as<torch::nn::LinearImpl>()) {
+      Op op{Op::Kind::InnerProduct, {product(shape)}, {linear->options.out_features()}};
+      op.weights = copyOf(linear->weight);
+      op.bias = copyOf(linear->bias);
+      shape = op.out;
+      ops.push_back(std::move(op));
+    } else if (const auto* unflatten = child->as<torch::nn::UnflattenImpl>()) {
+      shape = unflatten->options.sizes();
+    } else if (const auto* deconv = child->as<torch::nn::ConvTranspose2dImpl>()) {
+      const auto& o = deconv->options;
+      PIXELCLOTH_ASSERT(o.groups() == 1 && (*o.output_padding())[0] == 0 && (*o.dilation())[0] == 1,
+                        "transposed convolution with groups, output padding or dilation");
+      Op op{Op::Kind::Deconvolution, shape, {}};
+      op.kernel = (*o.kernel_size())[0];
+      op.stride = (*o.stride())[0];
+      op.padding = (*c10::get<torch::ExpandingArray<2>>(o.padding()))[0];
+      op.out = {o.out_channels(), (shape[1] - 1) * op.stride - 2 * op.padding + op.kernel,
+                (shape[2] - 1) * op.stride - 2 * op.padding + op.kernel};
+      op.weights = copyOf(deconv->weight);
+      op.bias = copyOf(deconv->bias);
+      shape = op.out;
+      ops.push_back(std::move(op));
+    } else if (const auto* conv = child->as<torch::nn::Conv2dImpl>()) {
+      const auto& o = conv->options;
+      PIXELCLOTH_ASSERT(o.groups() == 1 && (*o.stride())[0] == 1 && (*o.dilation())[0] == 1,
+                        "convolution with groups, stride or dilation");
+      Op op{Op::Kind::Convolution, shape, {}};
+      op.kernel = (*o.kernel_size())[0];
+      op.padding = (*c10::get<torch::ExpandingArray<2>>(o.padding()))[0];
+      op.out = {o.out_channels(), shape[1] + 2 * op.padding - op.kernel + 1, shape[2] + 2 * op.padding - op.kernel + 1};
+      op.weights = copyOf(conv->weight);
+      op.bias = copyOf(conv->bias);
+      shape = op.out;
+      ops.push_back(std::move(op));
+    } else if (const auto* bn = child->as<torch::nn::BatchNorm2dImpl>()) {
+      PIXELCLOTH_ASSERT(!ops.empty() && !ops.back().relu, "batch norm without a layer before it");
+      foldBatchNorm(ops.back(), *bn);
+    } else if (child->as<torch::nn::ReLUImpl>()) {
+      PIXELCLOTH_ASSERT(!ops.empty(), "ReLU without a layer before it");
+      ops.back().relu = true;
+    } else if (const auto* pca = child->as<PcaDecodeImpl>()) {  // mean + c B: an inner product with B^T
+      Op op{Op::Kind::InnerProduct, {product(shape)}, {pca->basis.size(1)}};
+      op.weights = copyOf(pca->basis.t());
+      op.bias = copyOf(pca->mean);
+      shape = op.out;
+      ops.push_back(std::move(op));
+    } else {
+      PIXELCLOTH_FAIL("the oneDNN engine has no layer " << child->name());
+    }
+  }
+  return ops;
+}
+
+/// Where a step reads and writes: slot 0 is the network's input, 1 its output, 2 and on scratch activations.
+struct Step {
+  dnnl::primitive primitive;
+  int op = -1;  ///< whose weights and bias it takes; -1 for reorders and ReLUs
+  int src = 0, dst = 0;
+  dnnl::memory::desc weights;  ///< the layout the kernel chose for them
+  dnnl::memory::desc scratchpad;
+};
+
+/// The primitives of one batch size, shared by every network (they share a spec); the weights are per network.
+struct Program {
+  std::vector<dnnl::memory::desc> slots;
+  std::vector<Step> steps;
+  size_t scratchpadBytes = 0;
+};
+
+/// One thread's activations and scratch space for a program.
+struct Workspace {
+  std::vector<dnnl::memory> slots;
+  std::vector<dnnl::memory> scratchpads;  ///< one per step, all on `scratch`
+  std::vector<char> scratch;
+};
+
+/// A network's folded ops and its weights in each layout a program asked for.
+struct Network {
+  std::vector<Op> ops;
+  std::vector<dnnl::memory> bias;
+  std::vector<std::vector<std::pair<dnnl::memory::desc, dnnl::memory>>> weights;  ///< per op
+};
+
+dnnl::memory::desc plainDesc(const std::vector<std::int64_t>& shape, std::int64_t batch) {
+  if (shape.size() == 1) return {{batch, shape[0]}, kF32, Tag::nc};
+  return {{batch, shape[0], shape[1], shape[2]}, kF32, Tag::nchw};
+}
+
+}  // namespace
+
+const char* engineName(Engine engine) { return kEngines.name(engine); }
+Engine engineFromName(const std::string& name, const std::string& context) { return kEngines.fromName(name, context); }
+
+struct CompiledNetworks::Impl {
+  ModelSpec spec;
+  int threads = 1;
+  dnnl::engine engine{dnnl::engine::kind::cpu, 0};
+  std::vector<Network> networks;
+  std::map<std::int64_t, Program> programs;                     ///< by batch size
+  std::map<std::int64_t, std::vector<Workspace>> workspaces;    ///< by batch size, one per worker
+
+  int workers() const { return static_cast<int>(networks.size()) >= threads ? threads : 1; }
+  const Program& program(std::int64_t batch);
+  const dnnl::memory& weightsOf(Network& network, int op, const dnnl::memory::desc& desc);
+  void run(const Program& program, Workspace& workspace, Network& network, const float* input, float* output);
+};
+
+const Program& CompiledNetworks::Impl::program(std::int64_t batch) {
+  auto found = programs.find(batch);
+  if (found != programs.end()) return found->second;
+  Program program;
+  const std::vector<Op>& ops = networks.front().ops;
+  program.slots = {plainDesc(ops.front().in, batch), plainDesc(ops.back().out, batch)};
+  int current = 0;  // slot holding the next op's input
+  dnnl::primitive_attr reluAttr, plainAttr;
+  {
+    dnnl::post_ops relu;
+    relu.append_eltwise(1.0f, dnnl::algorithm::eltwise_relu, 0.0f, 0.0f);
+    reluAttr.set_post_ops(relu);
+  }
+  for (dnnl::primitive_attr* attr : {&reluAttr, &plainAttr}) attr->set_scratchpad_mode(dnnl::scratchpad_mode::user);
+  auto addSlot = [&](const dnnl::memory::desc& desc) {
+    program.slots.push_back(desc);
+    return static_cast<int>(program.slots.size()) - 1;
+  };
+  // Brings `current` into `desc`'s layout (a reorder step when they differ).
+  auto bringTo = [&](const dnnl::memory::desc& desc) {
+    if (program.slots[current] == desc) return;
+    const int slot = addSlot(desc);
+    dnnl::reorder::primitive_desc pd(engine, program.slots[current], engine, desc, plainAttr);
+    program.steps.push_back({dnnl::reorder(pd), -1, current, slot, {}, pd.scratchpad_desc()});
+    current = slot;
+  };
+  for (size_t i = 0; i < ops.size(); ++i) {
+    const Op& op = ops[i];
+    const bool last = i + 1 == ops.size();
+    const dnnl::memory::desc bias({op.outChannels()}, kF32, Tag::x);
+    if (op.kind == Op::Kind::InnerProduct) {
+      // Its input is plain: nc, or a map in nchw, flattened as LibTorch flattens it.
+      const Dims dims = program.slots[current].dims();
+      if (dims.size() == 4) bringTo(dnnl::memory::desc(dims, kF32, Tag::nchw));
+      const dnnl::memory::desc src({batch, op.in[0]}, kF32, Tag::nc), dst({batch, op.out[0]}, kF32, Tag::nc),
+          weights({op.out[0], op.in[0]}, kF32, Tag::any);
+      dnnl::inner_product_forward::primitive_desc pd(
+          dnnl::inner_product_forward::desc(dnnl::prop_kind::forward_inference, src, weights, bias, dst),
+          op.relu ? reluAttr : plainAttr, engine);
+      if (program.slots[current] != src) program.slots[current] = src;  // the same plain bytes, seen as rows
+      const int slot = last ? 1 : addSlot(pd.dst_desc());
+      program.steps.push_back({dnnl::inner_product_forward(pd), static_cast<int>(i), current, slot, pd.weights_desc(),
+                               pd.scratchpad_desc()});
+      current = slot;
+      continue;
+    }
+    // A convolution or transposed convolution on a {C, H, W} map; an inner product's nc output is that map in nchw.
+    if (program.slots[current].dims().size() == 2) program.slots[current] = plainDesc(op.in, batch);
+    const Dims srcDims{batch, op.in[0], op.in[1], op.in[2]}, dstDims{batch, op.out[0], op.out[1], op.out[2]},
+        weightDims{op.out[0], op.in[0], op.kernel, op.kernel}, strides{op.stride, op.stride},
+        padding{op.padding, op.padding};
+    const dnnl::memory::desc src(srcDims, kF32, Tag::any), weights(weightDims, kF32, Tag::any),
+        dst(dstDims, kF32, last ? Tag::nchw : Tag::any);
+    // oneDNN's transposed convolution is 3.6x slower with a fused ReLU (issue 13): it gets a ReLU step of its own.
+    if (op.kind == Op::Kind::Deconvolution) {
+      dnnl::deconvolution_forward::primitive_desc pd(
+          dnnl::deconvolution_forward::desc(dnnl::prop_kind::forward_inference, dnnl::algorithm::deconvolution_direct,
+                                            src, weights, bias, dst, strides, padding, padding),
+          plainAttr, engine);
+      bringTo(pd.src_desc());
+      const int slot = last ? 1 : addSlot(pd.dst_desc());
+      program.steps.push_back({dnnl::deconvolution_forward(pd), static_cast<int>(i), current, slot,
+                               pd.weights_desc(), pd.scratchpad_desc()});
+      current = slot;
+      if (op.relu) {
+        dnnl::eltwise_forward::primitive_desc relu(
+            dnnl::eltwise_forward::desc(dnnl::prop_kind::forward_inference, dnnl::algorithm::eltwise_relu,
+                                        pd.dst_desc(), 0.0f),
+            plainAttr, engine);
+        program.steps.push_back({dnnl::eltwise_forward(relu), -1, current, current, {}, relu.scratchpad_desc()});
+      }
+    } else {
+      dnnl::convolution_forward::primitive_desc pd(
+          dnnl::convolution_forward::desc(dnnl::prop_kind::forward_inference, dnnl::algorithm::convolution_direct,
+                                          src, weights, bias, dst, strides, padding, padding),
+          op.relu ? reluAttr : plainAttr, engine);
+      bringTo(pd.src_desc());
+      const int slot = last ? 1 : addSlot(pd.dst_desc());
+      program.steps.push_back({dnnl::convolution_forward(pd), static_cast<int>(i), current, slot, pd.weights_desc(),
+                               pd.scratchpad_desc()});
+      current = slot;
+    }
+  }
+  if (current != 1) bringTo(program.slots[1]);  // (only when the last op could not write the plain layout)
+  PIXELCLOTH_ASSERT(current == 1 || program.steps.back().dst == 1, "the program does not end in its output");
+  for (const Step& step : program.steps) program.scratchpadBytes = std::max(program.scratchpadBytes, step.scratchpad.get_size());
+
+  // Every worker's activations; every network's weights in the chosen layouts.
+  std::vector<Workspace>& spaces = workspaces[batch];
+  for (int w = 0; w < workers(); ++w) {
+    Workspace space;
+    space.scratch.resize(std::max<size_t>(program.scratchpadBytes, 64));
+    for (size_t s = 0; s < program.slots.size(); ++s)
+      space.slots.push_back(s < 2 ? dnnl::memory(program.slots[s], engine, DNNL_MEMORY_NONE)
+                                  : dnnl::memory(program.slots[s], engine));
+    for (const Step& step : program.steps) space.scratchpads.emplace_back(step.scratchpad, engine, space.scratch.data());
+    spaces.push_back(std::move(space));
+  }
+  for (Network& network : networks)
+    for (const Step& step : program.steps)
+      if (step.op >= 0) weightsOf(network, step.op, step.weights);
+  return programs.emplace(batch, std::move(program)).first->second;
+}
+
+const dnnl::memory& CompiledNetworks::Impl::weightsOf(Network& network, int op, const dnnl::memory::desc& desc) {
+  for (const auto& [d, memory] : network.weights[op])
+    if (d == desc) return memory;
+  Op& o = network.ops[op];
+  dnnl::memory::desc plain;
+  switch (o.kind) {
+    case Op::Kind::InnerProduct:
+      plain = dnnl::memory::desc({o.out[0], o.in[0]}, kF32, Tag::oi);
+      break;
+    case Op::Kind::Deconvolution:  // LibTorch keeps in x out x k x k
+      plain = dnnl::memory::desc({o.out[0], o.in[0], o.kernel, o.kernel}, kF32, Tag::iohw);
+      break;
+    case Op::Kind::Convolution:
+      plain = dnnl::memory::desc({o.out[0], o.in[0], o.kernel, o.kernel}, kF32, Tag::oihw);
+      break;
+  }
+  dnnl::memory source(plain, engine, o.weights.data()), target(desc, engine);
+  dnnl::stream stream(engine);
+  dnnl::reorder(source, target).execute(stream, source, target);
+  stream.wait();
+  network.weights[op].push_back({desc, target});
+  return network.weights[op].back().second;
+}
+
+void CompiledNetworks::Impl::run(const Program& program, Workspace& space, Network& network, const float* input,
+                                 float* output) {
+  dnnl::stream stream(engine);
+  space.slots[0].set_data_handle(const_cast<float*>(input));
+  space.slots[1].set_data_handle(output);
+  for (size_t s = 0; s < program.steps.size(); ++s) {
+    const Step& step = program.steps[s];
+    std::unordered_map<int, dnnl::memory> args{{DNNL_ARG_SRC, space.slots[step.src]},
+                                               {DNNL_ARG_DST, space.slots[step.dst]},
+                                               {DNNL_ARG_SCRATCHPAD, space.scratchpads[s]}};
+    if (step.op >= 0) {
+      args.insert({DNNL_ARG_WEIGHTS, weightsOf(network, step.op, step.weights)});
+      args.insert({DNNL_ARG_BIAS, network.bias[step.op]});
+    }
+    step.primitive.execute(stream, args);
+  }
+  stream.wait();
+}
+
+CompiledNetworks::CompiledNetworks(const std::vector<const Model*>& models, int threads)
+    : impl_(std::make_unique<Impl>()) {
+  PIXELCLOTH_CHECK(!models.empty(), "inference: no networks to compile");
+  PIXELCLOTH_CHECK(threads >= 0 && threads <= 1024, "inference: " << threads << " threads, expected 0 to 1024");
+  impl_->spec = models.front()->spec();
+  impl_->threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  torch::NoGradGuard noGrad;
+  for (const Model* model : models) {
+    const ModelSpec& s = model->spec();
+    PIXELCLOTH_CHECK(s.architecture == impl_->spec.architecture && s.width == impl_->spec.width &&
+                         s.inputs() == impl_->spec.inputs() && s.outputValues == impl_->spec.outputValues &&
+                         s.pcaComponents == impl_->spec.pcaComponents,
+                     "inference: networks of different specs (" << architectureName(s.architecture) << " width "
+                                                                << s.width << " vs "
+                                                                << architectureName(impl_->spec.architecture)
+                                                                << " width " << impl_->spec.width << ")");
+    Network network;
+    network.ops = opsOf(*model);
+    network.weights.resize(network.ops.size());
+    for (Op& op : network.ops)
+      network.bias.emplace_back(dnnl::memory::desc({op.outChannels()}, kF32, Tag::x), impl_->engine, op.bias.data());
+    impl_->networks.push_back(std::move(network));
+  }
+}
+
+CompiledNetworks::~CompiledNetworks() = default;
+CompiledNetworks::CompiledNetworks(CompiledNetworks&&) noexcept = default;
+CompiledNetworks& CompiledNetworks::operator=(CompiledNetworks&&) noexcept = default;
+
+const ModelSpec& CompiledNetworks::spec() const { return impl_->spec; }
+int CompiledNetworks::size() const { return static_cast<int>(impl_->networks.size()); }
+int CompiledNetworks::threads() const { return impl_->threads; }
+
+void CompiledNetworks::forward(const RowsF& inputs, std::vector<RowsF>& outputs) const {
+  PIXELCLOTH_CHECK(inputs.cols() == impl_->spec.inputs() && inputs.rows() > 0,
+                   "inference: " << inputs.rows() << " x " << inputs.cols() << " inputs, expected batch x "
+                                 << impl_->spec.inputs());
+  PIXELCLOTH_CHECK(inputs.allFinite(), "inference: the inputs are not all finite");
+  const std::int64_t batch = inputs.rows();
+  const Program& program = impl_->program(batch);
+  std::vector<Workspace>& spaces = impl_->workspaces[batch];
+  const std::int64_t values = product(impl_->networks.front().ops.back().out);
+  outputs.resize(impl_->networks.size());
+  for (RowsF& o : outputs) o.resize(batch, values);
+  const int workers = impl_->workers(), networks = size();
+  auto work = [&](int w, int ompThreads) {
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(ompThreads);
+    for (int n = w; n < networks; n += workers)
+      impl_->run(program, spaces[w], impl_->networks[n], inputs.data(), outputs[n].data());
+    omp_set_num_threads(before);
+  };
+  if (workers == 1) {
+    work(0, impl_->threads);
+    return;
+  }
+  std::vector<std::thread> pool;
+  std::exception_ptr failure;
+  std::mutex mutex;
+  for (int w = 0; w < workers; ++w)
+    pool.emplace_back([&, w] {
+      try {
+        work(w, 1);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        failure = std::current_exception();
+      }
+    });
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace pixelcloth::learn

@@ -10,6 +10,7 @@
 #include <oneapi/dnnl/dnnl.hpp>
 #include <thread>
 
+#include "few_channel_conv.h"
 #include "model_impl.h"
 #include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
@@ -143,10 +144,13 @@ struct Step {
   int src = 0, dst = 0;
   dnnl::memory::desc weights;  ///< the layout the kernel chose for them
   dnnl::memory::desc scratchpad;
+  bool fewChannel = false;  ///< our own last-layer convolution (few_channel_conv.h) instead of a primitive
+  int block = 0;            ///< its input's channel block
 };
 
 /// The primitives of one batch size, shared by every network (they share a spec); the weights are per network.
 struct Program {
+  std::int64_t batch = 0;
   std::vector<dnnl::memory::desc> slots;
   std::vector<Step> steps;
   size_t scratchpadBytes = 0;
@@ -164,7 +168,16 @@ struct Network {
   std::vector<Op> ops;
   std::vector<dnnl::memory> bias;
   std::vector<std::vector<std::pair<dnnl::memory::desc, dnnl::memory>>> weights;  ///< per op
+  std::vector<std::vector<float>> packed;  ///< per op: the few-channel convolution's weights, else empty
+  std::vector<int> packedBlock;             ///< per op: the channel block they were packed for
 };
+
+/// A last 3x3 convolution to a few channels goes to fewChannelConvolution.
+bool isFewChannel(const std::vector<Op>& ops, size_t i) {
+  const Op& op = ops[i];
+  return i + 1 == ops.size() && op.kind == Op::Kind::Convolution && op.kernel == 3 && op.padding == 1 &&
+         op.stride == 1 && op.out[0] <= 8 && !op.relu;
+}
 
 dnnl::memory::desc plainDesc(const std::vector<std::int64_t>& shape, std::int64_t batch) {
   if (shape.size() == 1) return {{batch, shape[0]}, kF32, Tag::nc};
@@ -194,6 +207,7 @@ const Program& CompiledNetworks::Impl::program(std::int64_t batch) {
   auto found = programs.find(batch);
   if (found != programs.end()) return found->second;
   Program program;
+  program.batch = batch;
   const std::vector<Op>& ops = networks.front().ops;
   program.slots = {plainDesc(ops.front().in, batch), plainDesc(ops.back().out, batch)};
   int current = 0;  // slot holding the next op's input
@@ -238,11 +252,29 @@ const Program& CompiledNetworks::Impl::program(std::int64_t batch) {
     }
     // A convolution or transposed convolution on a {C, H, W} map; an inner product's nc output is that map in nchw.
     if (program.slots[current].dims().size() == 2) program.slots[current] = plainDesc(op.in, batch);
+    if (isFewChannel(ops, i)) {
+      // It reads the layout the layer before chose if that is one of channel blocks, else nhwc.
+      const Dims dims{batch, op.in[0], op.in[1], op.in[2]};
+      int block = 0;
+      for (const auto& [tag, size] : {std::pair{Tag::nChw16c, 16}, {Tag::nChw8c, 8}, {Tag::nchw, 1}})
+        if (program.slots[current] == dnnl::memory::desc(dims, kF32, tag)) block = size;
+      if (block == 0) {
+        bringTo(dnnl::memory::desc(dims, kF32, Tag::nhwc));
+        block = static_cast<int>(op.in[0]);
+      }
+      Step step{dnnl::primitive(), static_cast<int>(i), current, 1, {}, {}};
+      step.fewChannel = true;
+      step.block = block;
+      program.steps.push_back(step);
+      current = 1;
+      continue;
+    }
+    const Tag dstTag = last ? Tag::nchw : Tag::any;
     const Dims srcDims{batch, op.in[0], op.in[1], op.in[2]}, dstDims{batch, op.out[0], op.out[1], op.out[2]},
         weightDims{op.out[0], op.in[0], op.kernel, op.kernel}, strides{op.stride, op.stride},
         padding{op.padding, op.padding};
     const dnnl::memory::desc src(srcDims, kF32, Tag::any), weights(weightDims, kF32, Tag::any),
-        dst(dstDims, kF32, last ? Tag::nchw : Tag::any);
+        dst(dstDims, kF32, dstTag);
     // oneDNN's transposed convolution is 3.6x slower with a fused ReLU (issue 13): it gets a ReLU step of its own.
     if (op.kind == Op::Kind::Deconvolution) {
       dnnl::deconvolution_forward::primitive_desc pd(
@@ -290,7 +322,14 @@ const Program& CompiledNetworks::Impl::program(std::int64_t batch) {
   }
   for (Network& network : networks)
     for (const Step& step : program.steps)
-      if (step.op >= 0) weightsOf(network, step.op, step.weights);
+      if (step.fewChannel && network.packedBlock[step.op] != step.block) {
+        const Op& op = network.ops[step.op];
+        network.packed[step.op] =
+            fewChannelWeights(op.weights, static_cast<int>(op.out[0]), static_cast<int>(op.in[0]), step.block);
+        network.packedBlock[step.op] = step.block;
+      } else if (step.op >= 0 && !step.fewChannel) {
+        weightsOf(network, step.op, step.weights);
+      }
   return programs.emplace(batch, std::move(program)).first->second;
 }
 
@@ -325,6 +364,15 @@ void CompiledNetworks::Impl::run(const Program& program, Workspace& space, Netwo
   space.slots[1].set_data_handle(output);
   for (size_t s = 0; s < program.steps.size(); ++s) {
     const Step& step = program.steps[s];
+    if (step.fewChannel) {
+      stream.wait();
+      const Op& op = network.ops[step.op];
+      fewChannelConvolution(static_cast<const float*>(space.slots[step.src].get_data_handle()), program.batch,
+                            static_cast<int>(op.in[1]), static_cast<int>(op.in[2]), static_cast<int>(op.in[0]), step.block,
+                            network.packed[step.op], op.bias, static_cast<int>(op.out[0]),
+                            static_cast<float*>(space.slots[step.dst].get_data_handle()));
+      continue;
+    }
     std::unordered_map<int, dnnl::memory> args{{DNNL_ARG_SRC, space.slots[step.src]},
                                                {DNNL_ARG_DST, space.slots[step.dst]},
                                                {DNNL_ARG_SCRATCHPAD, space.scratchpads[s]}};
@@ -356,6 +404,8 @@ CompiledNetworks::CompiledNetworks(const std::vector<const Model*>& models, int 
     Network network;
     network.ops = opsOf(*model);
     network.weights.resize(network.ops.size());
+    network.packed.resize(network.ops.size());
+    network.packedBlock.assign(network.ops.size(), 0);
     for (Op& op : network.ops)
       network.bias.emplace_back(dnnl::memory::desc({op.outChannels()}, kF32, Tag::x), impl_->engine, op.bias.data());
     impl_->networks.push_back(std::move(network));

@@ -1,0 +1,25 @@
+#pragma once
+
+// The decoders' last layer (learn/-internal): a 3x3 convolution to a few channels (16 -> 3 for a patch, 12 -> 6 for
+// the whole garment at width 1). oneDNN's kernels are written for 16 or more output channels and fall to a gemm or
+// padded path here; this one slides the 3 x C window of a channels-last row along it.
+
+#include <cstdint>
+#include <vector>
+
+namespace pixelcloth::learn {
+
+/// The input read in channel blocks of `block` channels, batch x ceil(in / block) x height x width x block (the
+/// channels of the last block padded): oneDNN's nChw16c or nChw8c, nhwc (one block of all channels) or nchw (blocks
+/// of 1).
+/// LibTorch's out x in x 3 x 3 weights rearranged as the kernel reads them: out x blocks x 3 (rows) x 3 x block,
+/// zero for the padded channels.
+std::vector<float> fewChannelWeights(const std::vector<float>& weights, int outChannels, int inChannels, int block);
+
+/// dst (batch x out x height x width, nchw) = bias + the 3x3 convolution, padding 1, of src (in channel blocks, as
+/// above). Spreads rows over OpenMP's threads; picks an AVX-512 or AVX2 build at run time.
+void fewChannelConvolution(const float* src, std::int64_t batch, int height, int width, int inChannels, int block,
+                           const std::vector<float>& weights, const std::vector<float>& bias, int outChannels,
+                           float* dst);
+
+}  // namespace pixelcloth::learn

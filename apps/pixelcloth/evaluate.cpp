@@ -19,12 +19,13 @@ namespace pixelcloth::apps {
 
 namespace {
 struct EvaluateArgs {
-  std::string model, dataset, split = "test", base, out;
+  std::string model, dataset, split = "test", base, out, engine = "onednn";
 };
 
 void runEvaluate(const EvaluateArgs& args) {
   core::checkOutputFolder(args.out);
-  const PredictionInputs inputs = datasetPredictionInputs(args.model, args.dataset, args.base);
+  const PredictionInputs inputs = datasetPredictionInputs(args.model, args.dataset, args.base,
+                                                           learn::engineFromName(args.engine, "--engine"));
   const stitch::Evaluation evaluation = stitch::evaluate(*inputs.model, inputs.data, args.split);
   nlohmann::json metrics = evaluation.metrics;
   metrics["model"] = args.model;
@@ -66,6 +67,7 @@ void registerEvaluate(CLI::App& app) {
   verb->add_option("--base", args->base,
                    "Residual models: the dataset's base folder (default: the one the model was trained with)");
   verb->add_option("--out", args->out, "Output folder: metrics.json, error_maps.png")->required();
+  addEngineOption(*verb, args->engine);
   verb->callback([args] { runEvaluate(*args); });
 }
 

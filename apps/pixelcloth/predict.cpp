@@ -25,7 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct PredictArgs {
-  std::string model, pose, markers, dataset, base, out;
+  std::string model, pose, markers, dataset, base, out, engine = "onednn";
   std::vector<int> samples;
 };
 
@@ -48,9 +48,10 @@ void runPredict(const PredictArgs& args) {
   PIXELCLOTH_CHECK(args.markers.empty() || !args.pose.empty(),
                    "predict: --markers goes with --pose (dataset samples take their markers from the base folder)");
   core::checkOutputFolder(args.out);
+  const learn::Engine engine = learn::engineFromName(args.engine, "--engine");
   const PredictionInputs inputs = args.pose.empty()
-                                      ? datasetPredictionInputs(args.model, args.dataset, args.base)
-                                      : posePredictionInputs(args.model, args.pose, args.markers, args.dataset);
+                                      ? datasetPredictionInputs(args.model, args.dataset, args.base, engine)
+                                      : posePredictionInputs(args.model, args.pose, args.markers, args.dataset, engine);
   std::vector<int> rows;
   for (int sample : args.samples) {
     const int row = sample - inputs.data.info.settings.first();
@@ -94,6 +95,7 @@ void registerPredict(CLI::App& app) {
                    "Residual models: the dataset's base folder (default: the one the model was trained with)");
   verb->add_option("--out", args->out, "Output folder: garment.obj/.exr/.png, or sample_NNNNNN.* per sample")
       ->required();
+  addEngineOption(*verb, args->engine);
   verb->callback([args] { runPredict(*args); });
 }
 

@@ -13,18 +13,27 @@ namespace fs = std::filesystem;
 namespace {
 
 /// The model folder's model, for the garment of `dataset`, checked against it.
-std::unique_ptr<learn::TrainedModel> modelFor(const fs::path& modelFolder, const data::DatasetInfo& info) {
-  auto model = std::make_unique<learn::TrainedModel>(modelFolder, data::datasetGarment(info));
+std::unique_ptr<learn::TrainedModel> modelFor(const fs::path& modelFolder, const data::DatasetInfo& info,
+                                              learn::Engine engine) {
+  auto model = std::make_unique<learn::TrainedModel>(modelFolder, data::datasetGarment(info), engine);
   model->checkDataset(info);
   return model;
 }
 
 }  // namespace
 
-PredictionInputs datasetPredictionInputs(const fs::path& modelFolder, const fs::path& dataset, const fs::path& base) {
+void addEngineOption(CLI::App& verb, std::string& engine) {
+  verb.add_option("--engine", engine,
+                  "What runs the networks: onednn (compiled once, fast) or libtorch (its modules, the reference)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"onednn", "libtorch"}));
+}
+
+PredictionInputs datasetPredictionInputs(const fs::path& modelFolder, const fs::path& dataset, const fs::path& base,
+                                         learn::Engine engine) {
   const data::DatasetInfo info = data::readDatasetInfo(dataset);
   PredictionInputs out;
-  out.model = modelFor(modelFolder, info);
+  out.model = modelFor(modelFolder, info, engine);
   PIXELCLOTH_CHECK(base.empty() || out.model->residual(),
                    "--base " << base.string() << ": the model in " << modelFolder.string()
                              << " is not a residual model (it takes the pose alone)");
@@ -34,11 +43,11 @@ PredictionInputs datasetPredictionInputs(const fs::path& modelFolder, const fs::
 }
 
 PredictionInputs posePredictionInputs(const fs::path& modelFolder, const fs::path& posePath, const fs::path& markersPath,
-                                      const fs::path& datasetArg) {
+                                      const fs::path& datasetArg, learn::Engine engine) {
   const fs::path dataset = datasetArg.empty() ? learn::trainingDatasetOf(modelFolder) : datasetArg;
   const data::DatasetInfo info = data::readDatasetInfo(dataset);
   PredictionInputs out;
-  out.model = modelFor(modelFolder, info);
+  out.model = modelFor(modelFolder, info, engine);
   learn::TrainingData& data = out.data;
   data.folder = dataset;
   data.info = info;

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "few_channel_conv.h"
+#include "layers.h"
 #include "model_impl.h"
 #include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
@@ -92,28 +93,22 @@ std::vector<Op> opsOf(const Model& model) {
       ops.push_back(std::move(op));
     } else if (const auto* unflatten = child->as<torch::nn::UnflattenImpl>()) {
       shape = unflatten->options.sizes();
-    } else if (const auto* deconv = child->as<torch::nn::ConvTranspose2dImpl>()) {
-      const auto& o = deconv->options;
-      PIXELCLOTH_ASSERT(o.groups() == 1 && (*o.output_padding())[0] == 0 && (*o.dilation())[0] == 1,
-                        "transposed convolution with groups, output padding or dilation");
+    } else if (const auto* deconv = child->as<TransposedConv2dImpl>()) {
       Op op{Op::Kind::Deconvolution, shape, {}};
-      op.kernel = (*o.kernel_size())[0];
-      op.stride = (*o.stride())[0];
-      op.padding = (*c10::get<torch::ExpandingArray<2>>(o.padding()))[0];
-      op.out = {o.out_channels(), (shape[1] - 1) * op.stride - 2 * op.padding + op.kernel,
+      op.kernel = deconv->kernel;
+      op.stride = deconv->stride;
+      op.padding = deconv->padding;
+      op.out = {deconv->out, (shape[1] - 1) * op.stride - 2 * op.padding + op.kernel,
                 (shape[2] - 1) * op.stride - 2 * op.padding + op.kernel};
       op.weights = copyOf(deconv->weight);
       op.bias = copyOf(deconv->bias);
       shape = op.out;
       ops.push_back(std::move(op));
-    } else if (const auto* conv = child->as<torch::nn::Conv2dImpl>()) {
-      const auto& o = conv->options;
-      PIXELCLOTH_ASSERT(o.groups() == 1 && (*o.stride())[0] == 1 && (*o.dilation())[0] == 1,
-                        "convolution with groups, stride or dilation");
+    } else if (const auto* conv = child->as<ChannelsLastConv2dImpl>()) {
       Op op{Op::Kind::Convolution, shape, {}};
-      op.kernel = (*o.kernel_size())[0];
-      op.padding = (*c10::get<torch::ExpandingArray<2>>(o.padding()))[0];
-      op.out = {o.out_channels(), shape[1] + 2 * op.padding - op.kernel + 1, shape[2] + 2 * op.padding - op.kernel + 1};
+      op.kernel = conv->kernel;
+      op.padding = conv->padding;
+      op.out = {conv->out, shape[1] + 2 * op.padding - op.kernel + 1, shape[2] + 2 * op.padding - op.kernel + 1};
       op.weights = copyOf(conv->weight);
       op.bias = copyOf(conv->bias);
       shape = op.out;

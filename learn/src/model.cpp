@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "layers.h"
 #include "model_impl.h"
 #include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/core/enum_names.h"
@@ -181,11 +182,10 @@ torch::nn::Sequential buildNetwork(const std::vector<Layer>& layers) {
         net->push_back(torch::nn::Unflatten(torch::nn::UnflattenOptions(1, l.shape)));
         break;
       case Layer::Kind::ConvTranspose:
-        net->push_back(torch::nn::ConvTranspose2d(
-            torch::nn::ConvTranspose2dOptions(l.in, l.out, l.kernel).stride(l.stride).padding(l.padding)));
+        net->push_back(TransposedConv2d(l.in, l.out, l.kernel, l.stride, l.padding));
         break;
       case Layer::Kind::Conv:
-        net->push_back(torch::nn::Conv2d(torch::nn::Conv2dOptions(l.in, l.out, l.kernel).padding(l.padding)));
+        net->push_back(ChannelsLastConv2d(l.in, l.out, l.kernel));
         break;
       case Layer::Kind::BatchNorm:
         net->push_back(torch::nn::BatchNorm2d(l.out));

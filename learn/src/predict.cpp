@@ -58,10 +58,14 @@ fs::path trainingDatasetOf(const fs::path& modelFolder) {
 struct TrainedModel::Impl {
   fs::path folder;
   std::vector<Network> networks;
+  Engine engine = Engine::OneDnn;
+  std::unique_ptr<CompiledNetworks> compiled;  ///< the oneDNN engine's networks
 };
 
-TrainedModel::TrainedModel(const fs::path& folder, const garment::Garment& garment) : impl_(std::make_unique<Impl>()) {
+TrainedModel::TrainedModel(const fs::path& folder, const garment::Garment& garment, Engine engine, int threads)
+    : impl_(std::make_unique<Impl>()) {
   impl_->folder = folder;
+  impl_->engine = engine;
   const std::vector<std::pair<int, fs::path>> found = networkFolders(folder);
   std::vector<patches::Patch> patchList;
   for (const auto& [patchId, path] : found) {
@@ -98,12 +102,18 @@ TrainedModel::TrainedModel(const fs::path& folder, const garment::Garment& garme
                     std::to_string(spec.width) + " (" + context + ")");
     impl_->networks.push_back(std::move(network));
   }
+  if (engine == Engine::OneDnn) {
+    std::vector<const Model*> models;
+    for (const Network& n : impl_->networks) models.push_back(&n.model);
+    impl_->compiled = std::make_unique<CompiledNetworks>(models, threads);
+  }
 }
 
 TrainedModel::~TrainedModel() = default;
 TrainedModel::TrainedModel(TrainedModel&&) noexcept = default;
 
 const fs::path& TrainedModel::folder() const { return impl_->folder; }
+Engine TrainedModel::engine() const { return impl_->engine; }
 const nlohmann::json& TrainedModel::sidecar() const { return impl_->networks.front().sidecar; }
 Architecture TrainedModel::architecture() const { return impl_->networks.front().model.spec().architecture; }
 OffsetSpace TrainedModel::space() const {
@@ -142,6 +152,19 @@ std::vector<NetworkPrediction> TrainedModel::predict(const Eigen::MatrixXf& inpu
   PIXELCLOTH_CHECK(inputs.allFinite(), "predict: the inputs are not all finite");
   torch::NoGradGuard noGrad;
   std::vector<NetworkPrediction> out;
+  if (impl_->compiled) {
+    std::vector<RowsF> outputs;
+    impl_->compiled->forward(inputs, outputs);
+    for (size_t k = 0; k < impl_->networks.size(); ++k) {
+      const Network& n = impl_->networks[k];
+      std::vector<std::int64_t> shape{inputs.rows()};
+      for (std::int64_t d : n.target->shape()) shape.push_back(d);
+      const torch::Tensor output = torch::from_blob(outputs[k].data(), shape, torch::kFloat32);
+      const torch::Tensor values = n.target->decode(output.to(ModelAccess::device(n.model)));  // B x n x 3
+      out.push_back({n.patch, n.target->vertices(), toEigen(values)});
+    }
+    return out;
+  }
   const torch::Tensor x = toTensor(inputs);
   for (Network& n : impl_->networks) {
     torch::nn::Sequential& net = ModelAccess::network(n.model);

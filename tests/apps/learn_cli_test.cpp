@@ -66,9 +66,9 @@ class LearnCli : public ::testing::Test {
     const CliRun run = capture(command);
     ASSERT_EQ(run.status, 0) << run;
   }
-  static nlohmann::json metricsOf(const fs::path& model, const fs::path& out) {
-    const CliRun run = runPixelcloth(
-        {"evaluate", "--model", model.string(), "--dataset", dataset().string(), "--out", out.string()});
+  static nlohmann::json metricsOf(const fs::path& model, const fs::path& out, const std::string& engine = "onednn") {
+    const CliRun run = runPixelcloth({"evaluate", "--model", model.string(), "--dataset", dataset().string(), "--out",
+                                      out.string(), "--engine", engine});
     EXPECT_EQ(run.status, 0) << run;
     return nlohmann::json::parse(readFile(out / "metrics.json"));
   }
@@ -87,6 +87,10 @@ TEST_F(LearnCli, EveryModelTrainsPredictsAndIsEvaluated) {
     EXPECT_LT(metrics["vertex_error_cm"].get<double>(), 100);
     EXPECT_EQ(metrics["patches"].size(), 28u);
     EXPECT_TRUE(fs::exists(work_ / (std::string(model) + "_eval") / "error_maps.png"));
+    // LibTorch's modules, the reference, measure the same.
+    const nlohmann::json reference = metricsOf(out, work_ / (std::string(model) + "_libtorch"), "libtorch");
+    EXPECT_NEAR(metrics["vertex_error_cm"].get<double>(), reference["vertex_error_cm"].get<double>(),
+                1e-4 * reference["vertex_error_cm"].get<double>());
   }
   // predict, dataset form: an OBJ, EXR and PNG per sample, and the error it printed is the evaluation's.
   const fs::path predicted = work_ / "predicted";

@@ -199,8 +199,20 @@ TEST(Train, PatchDecodersTrainInSubsetsIntoOneFolder) {
   const pl::TrainingData data = pl::loadTrainingData(shirtDataset(), pl::OffsetSpace::Local, {});
   const pl::TrainedModel model(out, data.garment);
   EXPECT_EQ(model.patches(), (std::vector<int>{0, 3, 7}));
+  EXPECT_EQ(model.engine(), pl::Engine::OneDnn);
   const std::vector<pl::NetworkPrediction> predicted = model.predict(data.inputs.topRows(2));
   ASSERT_EQ(predicted.size(), 3u);
+  // The oneDNN engine predicts what LibTorch's modules do.
+  const std::vector<pl::NetworkPrediction> reference =
+      pl::TrainedModel(out, data.garment, pl::Engine::LibTorch).predict(data.inputs.topRows(2));
+  ASSERT_EQ(reference.size(), 3u);
+  for (size_t k = 0; k < reference.size(); ++k) {
+    EXPECT_EQ(predicted[k].vertices, reference[k].vertices);
+    EXPECT_GT(reference[k].values.cwiseAbs().maxCoeff(), 0);  // trained: no longer the zero start
+    EXPECT_LE((predicted[k].values - reference[k].values).cwiseAbs().maxCoeff(),
+              1e-5 * reference[k].values.cwiseAbs().maxCoeff())
+        << "patch " << reference[k].patch;
+  }
   // Each crop covers its patch and a band of its neighbours: more vertices than the patch has.
   const std::vector<pixelcloth::patches::Patch> patchList = pixelcloth::patches::garmentPatches(data.garment);
   for (const pl::NetworkPrediction& p : predicted) {

@@ -13,6 +13,7 @@
 
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/garment.h"
+#include "pixelcloth/learn/inference.h"
 #include "pixelcloth/learn/model.h"
 #include "pixelcloth/learn/spaces.h"
 
@@ -29,8 +30,10 @@ class TrainedModel {
  public:
   /// Loads `folder` for `garment` (the garment of the dataset it was trained on, e.g. data::datasetGarment). Throws
   /// InputError naming the file for a missing, truncated or foreign checkpoint, a model of another garment, or patch
-  /// folders that disagree (architecture, width, dataset, base).
-  TrainedModel(const std::filesystem::path& folder, const garment::Garment& garment);
+  /// folders that disagree (architecture, width, dataset, base). `engine` runs predict(): oneDNN (the networks
+  /// compiled once here, all of them in one call on `threads` cores, 0: every core) or LibTorch's modules.
+  TrainedModel(const std::filesystem::path& folder, const garment::Garment& garment, Engine engine = Engine::OneDnn,
+               int threads = 0);
   ~TrainedModel();
   TrainedModel(TrainedModel&&) noexcept;
 
@@ -49,7 +52,9 @@ class TrainedModel {
   /// Throws InputError unless `dataset` has this model's garment (vertex count) and pose size.
   void checkDataset(const data::DatasetInfo& dataset) const;
 
-  /// Every network's prediction for `inputs` (batch x inputs()), BatchNorm in eval mode.
+  Engine engine() const;
+  /// Every network's prediction for `inputs` (batch x inputs(): frames in one call share each weight's trip from
+  /// memory), BatchNorm in eval mode.
   std::vector<NetworkPrediction> predict(const Eigen::MatrixXf& inputs) const;
 
  private:

@@ -6,9 +6,12 @@
 #include <omp.h>
 #include <torch/torch.h>
 
+#include <cmath>
 #include <map>
+#include <mutex>
 #include <oneapi/dnnl/dnnl.hpp>
 #include <thread>
+#include <unordered_map>
 
 #include "few_channel_conv.h"
 #include "layers.h"

@@ -96,6 +96,10 @@ void registerTrain(CLI::App& app) {
   verb->add_option("--seed", args->options.seed, "Seeds the weights and the order of the samples")
       ->capture_default_str();
   verb->add_option("--threads", args->options.threads, "LibTorch threads (0: one per core)")->capture_default_str();
+  verb->add_option("--networks-at-once", args->options.networksAtOnce,
+                   "Patch decoders trained at the same time, the threads shared out (0: one per thread; 1: one "
+                   "after another on all threads)")
+      ->capture_default_str();
   verb->add_option("--out", args->out,
                    "Model folder: model.pt (best epoch), model.json, log.csv, checkpoint.pt (patch_NN/ per patch)")
       ->required();

@@ -5,6 +5,7 @@
 #include <torch/torch.h>
 
 #include <cmath>
+#include <mutex>
 
 #include "layers.h"
 #include "model_impl.h"
@@ -266,6 +267,9 @@ ModelSummary summarize(const ModelSpec& spec) {
 Model::Model(const ModelSpec& spec, std::uint64_t seed) : impl_(std::make_unique<Impl>()) {
   spec.validate();
   impl_->spec = spec;
+  // LibTorch's generator is global: models made on several threads at once (train's parallel networks) take turns.
+  static std::mutex generator;
+  const std::lock_guard<std::mutex> lock(generator);
   torch::manual_seed(seed);
   impl_->net = buildNetwork(planOf(spec));
   impl_->net->to(impl_->device);

@@ -1,8 +1,10 @@
 // Training a network on a dataset: batches made on a prefetch thread, the losses, Adam, model selection, checkpoints.
 #include "pixelcloth/learn/train.h"
 
+#include <omp.h>
 #include <torch/torch.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -323,6 +325,8 @@ void TrainOptions::validate() const {
   PIXELCLOTH_CHECK(std::isfinite(normalWeight) && std::isfinite(edgeWeight),
                    "train: the normal and edge weights must be finite");
   PIXELCLOTH_CHECK(threads >= 0 && threads <= 1024, "train: " << threads << " threads, expected 0 to 1024");
+  PIXELCLOTH_CHECK(networksAtOnce >= 0 && networksAtOnce <= 1024,
+                   "train: " << networksAtOnce << " networks at once, expected 0 to 1024");
   PIXELCLOTH_CHECK(patches.empty() || model.architecture == Architecture::Patch,
                    "train: --patches is for the patch model, not " << architectureName(model.architecture));
   PIXELCLOTH_CHECK(space != OffsetSpace::Positions || model.architecture == Architecture::FullyConnected ||
@@ -388,10 +392,40 @@ TrainReport train(const fs::path& datasetFolder, const fs::path& out, const Trai
   if (!options.quiet)
     progress = std::make_unique<core::Progress>("train " + std::string(architectureName(spec.architecture)),
                                                 static_cast<std::int64_t>(jobs.size()) * options.epochs);
-  for (NetworkJob& job : jobs) {
-    NetworkReport network = trainNetwork(data, job, spec, options, normalWeight, edgeWeight, progress.get());
+  auto trainJob = [&](size_t k) {
+    NetworkReport network = trainNetwork(data, jobs[k], spec, options, normalWeight, edgeWeight, progress.get());
     if (progress && network.resumedAt > 0) progress->advance(std::min(network.resumedAt, options.epochs));
-    report.networks.push_back(std::move(network));
+    return network;
+  };
+  const int threads = torch::get_num_threads();
+  const int atOnce = static_cast<int>(std::min<size_t>(
+      jobs.size(), options.networksAtOnce > 0 ? options.networksAtOnce : std::max(1, threads)));
+  if (atOnce <= 1) {
+    for (size_t k = 0; k < jobs.size(); ++k) report.networks.push_back(trainJob(k));
+  } else {
+    // Small networks keep one core busier than a share of two: each worker trains networks one thread each, taking
+    // the next job when it is done.
+    report.networks.resize(jobs.size());
+    std::atomic<size_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failureMutex;
+    std::vector<std::thread> workers;
+    for (int w = 0; w < atOnce; ++w)
+      workers.emplace_back([&, w] {
+        torch::get_num_threads();  // LibTorch sets up this thread's OpenMP threads on first use; then one per worker
+        omp_set_num_threads(std::max(1, threads / atOnce + (w < threads % atOnce ? 1 : 0)));
+        for (size_t k = next++; k < jobs.size(); k = next++) {
+          try {
+            report.networks[k] = trainJob(k);
+          } catch (...) {
+            const std::lock_guard<std::mutex> lock(failureMutex);
+            if (!failure) failure = std::current_exception();
+            next = jobs.size();
+          }
+        }
+      });
+    for (std::thread& t : workers) t.join();
+    if (failure) std::rethrow_exception(failure);
   }
   if (progress) progress->finish();
   report.seconds = secondsSince(start);

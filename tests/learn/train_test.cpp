@@ -226,6 +226,32 @@ TEST(Train, PatchDecodersTrainInSubsetsIntoOneFolder) {
   EXPECT_NE(inputErrorOf([&] { pl::train(shirtDataset(), out, options); }).find("patches 0 to 27"), std::string::npos);
 }
 
+TEST(Train, PatchDecodersTrainedTwoAtOnceEqualThoseTrainedOneAfterAnother) {
+  pl::TrainOptions options;
+  options.model.architecture = pl::Architecture::Patch;
+  options.model.width = 0.0625;
+  options.epochs = 2;
+  options.batch = 2;
+  options.quiet = true;
+  options.patches = {1, 4, 9};
+  options.threads = 2;
+  options.networksAtOnce = 2;  // one thread each
+  const fs::path together = pixelcloth::testing::freshDir("together"), apart = pixelcloth::testing::freshDir("apart");
+  const pl::TrainReport a = pl::train(shirtDataset(), together, options);
+  options.threads = 1;
+  options.networksAtOnce = 1;
+  const pl::TrainReport b = pl::train(shirtDataset(), apart, options);
+  ASSERT_EQ(a.networks.size(), 3u);
+  for (size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(a.networks[k].patch, options.patches[k]);  // reported in job order
+    EXPECT_EQ(a.networks[k].epochs.back().trainErrorCm, b.networks[k].epochs.back().trainErrorCm);
+  }
+  const pl::TrainingData data = pl::loadTrainingData(shirtDataset(), pl::OffsetSpace::Local, {});
+  const std::vector<pl::NetworkPrediction> x = pl::TrainedModel(together, data.garment).predict(data.inputs.topRows(2)),
+                                           y = pl::TrainedModel(apart, data.garment).predict(data.inputs.topRows(2));
+  for (size_t k = 0; k < 3; ++k) EXPECT_EQ(x[k].values, y[k].values) << "patch " << x[k].patch;
+}
+
 TEST(Train, TheBaselinesTrainInEachSpace) {
   for (const pl::OffsetSpace space : {pl::OffsetSpace::Local, pl::OffsetSpace::Root, pl::OffsetSpace::Positions}) {
     for (const pl::Architecture architecture : {pl::Architecture::FullyConnected, pl::Architecture::FullyConnectedPca}) {

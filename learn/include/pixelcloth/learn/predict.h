@@ -54,7 +54,7 @@ class TrainedModel {
 
   Engine engine() const;
   /// Every network's prediction for `inputs` (batch x inputs(): frames in one call share each weight's trip from
-  /// memory), BatchNorm in eval mode.
+  /// memory), BatchNorm in eval mode. The oneDNN engine keeps per-batch-size state: not for concurrent calls.
   std::vector<NetworkPrediction> predict(const Eigen::MatrixXf& inputs) const;
 
  private:

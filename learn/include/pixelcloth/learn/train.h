@@ -39,6 +39,9 @@ struct TrainOptions {
   double learningRate = 1e-3;
   std::uint64_t seed = 0;   ///< initial weights and the order of the train split in each epoch
   int threads = 0;          ///< LibTorch's intra-op threads; 0: its default (one per core)
+  /// Patch decoders: how many networks train at once, each on one thread (the threads above shared out); 0: one
+  /// per thread when there are two or more networks. 1: one after another, each on all the threads.
+  int networksAtOnce = 0;
   bool quiet = false;       ///< no progress on stderr
   void validate() const;
 };

@@ -203,6 +203,15 @@ TEST_F(LearnCli, BadInputIsRefusedNamingTheFile) {
                                      (work_ / "b").string()}),
                       {"model.pt", "truncated"}));
   EXPECT_FALSE(fs::exists(work_ / "b"));
+  // An engine that does not exist; a negative number of networks at once.
+  EXPECT_TRUE(refused(runPixelcloth({"evaluate", "--model", model.string(), "--dataset", dataset().string(), "--out",
+                                     (work_ / "e").string(), "--engine", "mkl"}),
+                      {"--engine", "mkl"}));
+  EXPECT_FALSE(fs::exists(work_ / "e"));
+  EXPECT_TRUE(refused(runPixelcloth({"train", "--dataset", dataset().string(), "--model", "patch", "--patches", "0",
+                                     "--networks-at-once", "-1", "--out", (work_ / "n").string()}),
+                      {"networks at once"}));
+  EXPECT_FALSE(fs::exists(work_ / "n"));
   // A model trained on another garment's dataset.
   const CliRun tie = runPixelcloth({"generate", "--garment", "necktie", "--count", "3", "--seed", "5", "--out",
                                     (work_ / "tie").string(), "--quiet"});

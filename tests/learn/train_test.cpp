@@ -181,14 +181,22 @@ TEST(Train, AResumedRunEndsWithTheWeightsOfAnUninterruptedOne) {
   EXPECT_NE(message.find("checkpoint.pt"), std::string::npos) << message;
 }
 
-TEST(Train, PatchDecodersTrainInSubsetsIntoOneFolder) {
+namespace {
+/// Tiny patch decoders of `patches`, batch 2, quiet.
+pl::TrainOptions patchOptions(std::vector<int> patches, int epochs) {
   pl::TrainOptions options;
   options.model.architecture = pl::Architecture::Patch;
   options.model.width = 0.0625;
-  options.epochs = 1;
+  options.epochs = epochs;
   options.batch = 2;
   options.quiet = true;
-  options.patches = {3, 7};
+  options.patches = std::move(patches);
+  return options;
+}
+}  // namespace
+
+TEST(Train, PatchDecodersTrainInSubsetsIntoOneFolder) {
+  pl::TrainOptions options = patchOptions({3, 7}, 1);
   const fs::path out = pixelcloth::testing::freshDir("patches");
   const pl::TrainReport first = pl::train(shirtDataset(), out, options);
   ASSERT_EQ(first.networks.size(), 2u);
@@ -227,13 +235,7 @@ TEST(Train, PatchDecodersTrainInSubsetsIntoOneFolder) {
 }
 
 TEST(Train, PatchDecodersTrainedTwoAtOnceEqualThoseTrainedOneAfterAnother) {
-  pl::TrainOptions options;
-  options.model.architecture = pl::Architecture::Patch;
-  options.model.width = 0.0625;
-  options.epochs = 2;
-  options.batch = 2;
-  options.quiet = true;
-  options.patches = {1, 4, 9};
+  pl::TrainOptions options = patchOptions({1, 4, 9}, 2);
   options.threads = 2;
   options.networksAtOnce = 2;  // one thread each
   const fs::path together = pixelcloth::testing::freshDir("together"), apart = pixelcloth::testing::freshDir("apart");

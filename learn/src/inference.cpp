@@ -425,37 +425,28 @@ const dnnl::memory& CompiledNetworks::Impl::weightsOf(Network& network, int op, 
   std::vector<std::pair<dnnl::memory::desc, dnnl::memory>>& cached = network.weights[5 * op + part + 1];
   for (const auto& [d, memory] : cached)
     if (d == desc) return memory;
-  Op& o = network.ops[op];
+  const Op& o = network.ops[op];
+  const float* data = o.weights.data();
+  std::vector<float> partWeights;
+  dnnl::memory::desc plain;
   if (part >= 0) {  // a 2x2 part of a 4x4 transposed convolution, out x in x 2 x 2
     const std::int64_t in = o.in[0], out = o.out[0];
-    std::vector<float> weights(static_cast<size_t>(out * in * 4));
+    partWeights.resize(static_cast<size_t>(out * in * 4));
     for (std::int64_t co = 0; co < out; ++co)
       for (std::int64_t ci = 0; ci < in; ++ci)
         for (int a = 0; a < 2; ++a)
           for (int b = 0; b < 2; ++b)
-            weights[((co * in + ci) * 2 + a) * 2 + b] =
+            partWeights[((co * in + ci) * 2 + a) * 2 + b] =
                 o.weights[((ci * out + co) * 4 + kTaps[part / 2][a]) * 4 + kTaps[part % 2][b]];
-    dnnl::memory source(dnnl::memory::desc({out, in, 2, 2}, kF32, Tag::oihw), engine, weights.data()),
-        target(desc, engine);
-    dnnl::stream stream(engine);
-    dnnl::reorder(source, target).execute(stream, source, target);
-    stream.wait();
-    cached.push_back({desc, target});
-    return cached.back().second;
+    data = partWeights.data();
+    plain = dnnl::memory::desc({out, in, 2, 2}, kF32, Tag::oihw);
+  } else if (o.kind == Op::Kind::InnerProduct) {
+    plain = dnnl::memory::desc({o.out[0], o.in[0]}, kF32, Tag::oi);
+  } else {  // LibTorch keeps a transposed convolution's in x out x k x k
+    plain = dnnl::memory::desc({o.out[0], o.in[0], o.kernel, o.kernel}, kF32,
+                               o.kind == Op::Kind::Deconvolution ? Tag::iohw : Tag::oihw);
   }
-  dnnl::memory::desc plain;
-  switch (o.kind) {
-    case Op::Kind::InnerProduct:
-      plain = dnnl::memory::desc({o.out[0], o.in[0]}, kF32, Tag::oi);
-      break;
-    case Op::Kind::Deconvolution:  // LibTorch keeps in x out x k x k
-      plain = dnnl::memory::desc({o.out[0], o.in[0], o.kernel, o.kernel}, kF32, Tag::iohw);
-      break;
-    case Op::Kind::Convolution:
-      plain = dnnl::memory::desc({o.out[0], o.in[0], o.kernel, o.kernel}, kF32, Tag::oihw);
-      break;
-  }
-  dnnl::memory source(plain, engine, o.weights.data()), target(desc, engine);
+  dnnl::memory source(plain, engine, const_cast<float*>(data)), target(desc, engine);
   dnnl::stream stream(engine);
   dnnl::reorder(source, target).execute(stream, source, target);
   stream.wait();

@@ -20,14 +20,35 @@ namespace pixelcloth::apps {
 namespace {
 struct EvaluateArgs {
   std::string model, dataset, split = "test", base, out, engine = "onednn";
+  StitchArgs stitch;
 };
+
+/// "0.123" or "-" for a null.
+std::string figure(const nlohmann::json& value, int digits = 3) {
+  if (!value.is_number()) return "-";
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(digits) << value.get<double>();
+  return out.str();
+}
 
 void runEvaluate(const EvaluateArgs& args) {
   core::checkOutputFolder(args.out);
   const PredictionInputs inputs = datasetPredictionInputs(args.model, args.dataset, args.base,
                                                            learn::engineFromName(args.engine, "--engine"));
-  const stitch::Evaluation evaluation = stitch::evaluate(*inputs.model, inputs.data, args.split);
+  const std::vector<stitch::Stitcher> stitchers = makeStitchers(args.stitch, inputs);
+  std::vector<const stitch::Stitcher*> modes;
+  for (const stitch::Stitcher& s : stitchers) modes.push_back(&s);
+  const std::vector<stitch::Evaluation> evaluations = stitch::evaluate(*inputs.model, inputs.data, args.split, modes);
+  const stitch::Evaluation& evaluation = evaluations.front();
   nlohmann::json metrics = evaluation.metrics;
+  if (evaluations.size() > 1) {
+    metrics["stitch_modes"] = nlohmann::json::array();
+    for (const stitch::Evaluation& e : evaluations) {
+      nlohmann::json m = e.metrics;
+      m.erase("patches");
+      metrics["stitch_modes"].push_back(m);
+    }
+  }
   metrics["model"] = args.model;
   metrics["architecture"] = learn::architectureName(inputs.model->architecture());
   metrics["residual"] = inputs.model->residual();
@@ -46,12 +67,20 @@ void runEvaluate(const EvaluateArgs& args) {
                                     viz::renderPatternValues(inputs.data.garment, evaluation.vertexErrorCm, high,
                                                              stretched.str(), 384, true)},
                                    1));
-  std::cout << std::fixed << std::setprecision(3) << args.split << ": " << metrics["samples"].get<int>()
-            << " samples, vertex error " << metrics["vertex_error_cm"].get<double>() << " cm, normal cosine "
-            << metrics["normal_cosine"].get<double>();
-  if (inputs.model->residual())
-    std::cout << " (marker reconstruction alone: " << metrics["base_vertex_error_cm"].get<double>() << " cm)";
-  std::cout << " -> " << args.out << "/{metrics.json, error_maps.png}\n";
+  for (const stitch::Evaluation& e : evaluations) {
+    const nlohmann::json& m = e.metrics;
+    std::cout << std::fixed << std::setprecision(3) << args.split << ", " << m["stitch"].get<std::string>() << ": "
+              << m["samples"].get<int>() << " samples, vertex error " << m["vertex_error_cm"].get<double>()
+              << " cm, normal cosine " << m["normal_cosine"].get<double>() << "; seams: gap "
+              << figure(m["seams"]["gap_cm"]["mean"]) << " cm (max " << figure(m["seams"]["gap_cm"]["max"])
+              << "), normal jump " << figure(m["seams"]["normal_jump_deg"], 2) << " deg, error near seams "
+              << figure(m["seams"]["near_seam_error_cm"]) << " cm, interior "
+              << figure(m["seams"]["interior_error_cm"]) << " cm";
+    if (inputs.model->residual())
+      std::cout << " (marker reconstruction alone: " << m["base_vertex_error_cm"].get<double>() << " cm)";
+    std::cout << "\n";
+  }
+  std::cout << "-> " << args.out << "/{metrics.json, error_maps.png}\n";
 }
 }  // namespace
 
@@ -68,6 +97,7 @@ void registerEvaluate(CLI::App& app) {
                    "Residual models: the dataset's base folder (default: the one the model was trained with)");
   verb->add_option("--out", args->out, "Output folder: metrics.json, error_maps.png")->required();
   addEngineOption(*verb, args->engine);
+  addStitchOptions(*verb, args->stitch, true);
   verb->callback([args] { runEvaluate(*args); });
 }
 

@@ -9,6 +9,7 @@
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/cloth_image.h"
+#include "pixelcloth/patches/patch.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
@@ -26,7 +27,30 @@ struct ImagesArgs {
   std::string dataset;
   std::vector<int> samples;
   bool all = false;
+  bool crops = false;
 };
+
+/// crops_NNNNNN/patch_NN.exr: each patch's enlarged 160 x 160 crop of `offsets` (#V x 3), channels du dv dn mask, the
+/// images a patch decoder predicts and `pixelcloth stitch` reads.
+void writeCrops(const std::filesystem::path& folder, const std::vector<patches::EnlargedCrop>& crops,
+                const Eigen::MatrixXf& offsets) {
+  for (size_t id = 0; id < crops.size(); ++id) {
+    const patches::EnlargedCrop& crop = crops[id];
+    const Eigen::MatrixXf pixels = crop.raster.apply(offsets);
+    patches::ClothImage image;
+    image.width = crop.frame.width;
+    image.height = crop.frame.height;
+    patches::ClothLayer layer;
+    layer.du = patches::toImage(pixels.col(0), image.width, image.height);
+    layer.dv = patches::toImage(pixels.col(1), image.width, image.height);
+    layer.dn = patches::toImage(pixels.col(2), image.width, image.height);
+    layer.mask = crop.raster.maskImage();
+    image.layers.push_back(std::move(layer));
+    char name[32];
+    std::snprintf(name, sizeof(name), "patch_%02zu.exr", id);
+    patches::writeClothImage(folder / name, image);
+  }
+}
 
 /// Cloth images of dataset samples: cloth_NNNNNN.exr and .png per sample index.
 void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& options) {
@@ -52,6 +76,9 @@ void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& 
   const Garment garment = data::datasetGarment(dataset.info);
   const patches::ClothImager imager(garment, options);
   const std::filesystem::path folder(args.out);
+  std::vector<patches::EnlargedCrop> crops;
+  if (args.crops)
+    for (const patches::Patch& patch : patches::garmentPatches(garment)) crops.push_back(patches::enlargedCrop(garment, patch));
   Progress progress("images", static_cast<std::int64_t>(indices.size()));
   for (int index : indices) {
     char name[32];
@@ -59,11 +86,15 @@ void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& 
     const patches::ClothImage image = imager.rasterize(dataset.offsetsOf(index - settings.first()));
     patches::writeClothImage(folder / (std::string(name) + ".exr"), image);
     writePng(folder / (std::string(name) + ".png"), viz::renderClothImage(image));
+    if (args.crops) {
+      std::snprintf(name, sizeof(name), "crops_%06d", index);
+      writeCrops(folder / name, crops, dataset.offsetsOf(index - settings.first()));
+    }
     progress.advance();
   }
   progress.finish();
   PIXELCLOTH_INFO("images: " << indices.size() << " samples of " << args.dataset << " -> " << args.out
-                             << "/cloth_NNNNNN.{exr,png}");
+                             << "/cloth_NNNNNN.{exr,png}" << (args.crops ? ", crops_NNNNNN/patch_NN.exr" : ""));
 }
 
 void runImages(const ImagesArgs& args) {
@@ -77,6 +108,7 @@ void runImages(const ImagesArgs& args) {
   options.height = args.height;
   options.padding = args.padding;
   options.validate();
+  PIXELCLOTH_CHECK(!args.crops || !args.dataset.empty(), "images: --crops goes with --dataset");
   if (!args.dataset.empty()) return runDatasetImages(args, options);
   PIXELCLOTH_CHECK(!args.garment.empty(), "images: --garment is required (unless --dataset gives it)");
   PIXELCLOTH_CHECK(args.values.empty() != args.image.empty(),
@@ -117,6 +149,9 @@ void registerImages(CLI::App& app) {
                    "Dataset folder: write cloth images of its samples (--samples or --all) from its offsets");
   verb->add_option("--samples", args->samples, "With --dataset: sample indices, e.g. 0,5,17")->delimiter(',');
   verb->add_flag("--all", args->all, "With --dataset: every sample of the dataset");
+  verb->add_flag("--crops", args->crops,
+                 "With --dataset: also each patch's 160 x 160 crop, crops_NNNNNN/patch_NN.exr (what a patch decoder "
+                 "predicts and pixelcloth stitch reads)");
   verb->add_option("--out", args->out,
                    "With --values: output folder (cloth.exr, cloth.png); with --image: output NPY file (#V, 3); with "
                    "--dataset: output folder (cloth_NNNNNN.exr and .png per sample)")

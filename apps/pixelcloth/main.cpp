@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerTrain(app);
   pixelcloth::apps::registerPredict(app);
   pixelcloth::apps::registerEvaluate(app);
+  pixelcloth::apps::registerPca(app);
+  pixelcloth::apps::registerStitch(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
 
   try {

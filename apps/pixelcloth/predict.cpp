@@ -27,6 +27,7 @@ namespace fs = std::filesystem;
 struct PredictArgs {
   std::string model, pose, markers, dataset, base, out, engine = "onednn";
   std::vector<int> samples;
+  StitchArgs stitch;
 };
 
 /// <name>.obj (the garment), <name>.exr (its cloth image of local offsets) and <name>.png (a preview).
@@ -62,7 +63,10 @@ void runPredict(const PredictArgs& args) {
     rows.push_back(row);
   }
   if (rows.empty()) rows.push_back(0);  // the pose form: one row
-  const stitch::RowPredictions predicted = stitch::predictRows(*inputs.model, inputs.data, rows);
+  PIXELCLOTH_CHECK(args.stitch.modes.find(',') == std::string::npos,
+                   "predict --stitch " << args.stitch.modes << ": one mode (evaluate compares several)");
+  const std::vector<stitch::Stitcher> stitchers = makeStitchers(args.stitch, inputs);
+  const stitch::RowPredictions predicted = stitch::predictRows(*inputs.model, inputs.data, rows, &stitchers.front());
   core::ensureOutputFolder(args.out);
   const patches::ClothImager imager(inputs.data.garment);
   std::cout << std::fixed << std::setprecision(3);
@@ -96,6 +100,7 @@ void registerPredict(CLI::App& app) {
   verb->add_option("--out", args->out, "Output folder: garment.obj/.exr/.png, or sample_NNNNNN.* per sample")
       ->required();
   addEngineOption(*verb, args->engine);
+  addStitchOptions(*verb, args->stitch, false);
   verb->callback([args] { runPredict(*args); });
 }
 

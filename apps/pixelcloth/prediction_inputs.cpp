@@ -1,7 +1,10 @@
 #include "prediction_inputs.h"
 
+#include <algorithm>
+
 #include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/log.h"
 #include "pixelcloth/cage/markers.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/recon/capture_base.h"
@@ -27,6 +30,64 @@ void addEngineOption(CLI::App& verb, std::string& engine) {
                   "What runs the networks: onednn (compiled once, fast) or libtorch (its modules, the reference)")
       ->capture_default_str()
       ->check(CLI::IsMember({"onednn", "libtorch"}));
+}
+
+void addStitchOptions(CLI::App& verb, StitchArgs& args, bool several) {
+  verb.add_option("--stitch", args.modes,
+                  std::string("How the patch networks' predictions become one garment: mean, feather (weights falling "
+                              "off outside each patch), pca:K (the mean projected on K principal components of the "
+                              "training split) or gan:DIR (a blender from train --model gan)") +
+                      (several ? "; several separated by commas, each measured on the same predictions" : ""))
+      ->capture_default_str();
+  verb.add_option("--pca", args.pca,
+                  "PCA filter folder for pca:K (pixelcloth pca); default: the model folder's pca/, fitted on the "
+                  "dataset's train split on first use");
+  verb.add_option("--pca-rank", args.pcaRank,
+                  "Components kept when the filter is fitted here (0: min(2048, train samples, 3 x vertices))")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+}
+
+std::vector<stitch::Stitcher> makeStitchers(const StitchArgs& args, const PredictionInputs& inputs) {
+  const std::vector<stitch::StitchMode> modes = stitch::parseStitchModes(args.modes, "--stitch");
+  std::shared_ptr<const stitch::PcaFilter> pca;
+  const bool needPca = std::any_of(modes.begin(), modes.end(),
+                                   [](const stitch::StitchMode& m) { return m.kind == stitch::StitchKind::Pca; });
+  const learn::TrainingData& data = inputs.data;
+  if (needPca && !args.pca.empty()) {
+    auto filter = std::make_shared<stitch::PcaFilter>(stitch::PcaFilter::load(args.pca));
+    if (data.train.empty())  // one pose: no dataset rows to check against
+      filter->checkMatches(data.garment.name, data.garment.mesh.numVertices(), data.space);
+    else
+      filter->checkMatches(data);
+    pca = std::move(filter);
+  } else if (needPca) {
+    const fs::path folder = stitch::defaultPcaFolder(inputs.model->folder());
+    if (fs::is_regular_file(folder / "pca.json")) {
+      auto filter = std::make_shared<stitch::PcaFilter>(stitch::PcaFilter::load(folder));
+      bool matches = true;
+      try {
+        if (!data.train.empty()) filter->checkMatches(data);
+      } catch (const core::InputError& e) {
+        matches = false;
+        PIXELCLOTH_INFO(folder.string() << ": fitted on another dataset; fitting again on " << data.folder.string());
+      }
+      if (matches && args.pcaRank != 0 && args.pcaRank != filter->rank()) matches = false;
+      if (matches) pca = std::move(filter);
+    }
+    if (!pca) {
+      PIXELCLOTH_CHECK(!data.train.empty(), "--stitch pca:K: " << folder.string()
+                                                                << " holds no PCA filter of this model's dataset; "
+                                                                   "fit one with pixelcloth pca or evaluate "
+                                                                   "--stitch pca:K first, or give --pca DIR");
+      stitch::PcaFilter filter = stitch::PcaFilter::fit(data, args.pcaRank);
+      filter.save(folder);
+      pca = std::make_shared<stitch::PcaFilter>(std::move(filter));
+    }
+  }
+  std::vector<stitch::Stitcher> stitchers;
+  for (const stitch::StitchMode& mode : modes) stitchers.emplace_back(data.garment, mode, pca);
+  return stitchers;
 }
 
 PredictionInputs datasetPredictionInputs(const fs::path& modelFolder, const fs::path& dataset, const fs::path& base,

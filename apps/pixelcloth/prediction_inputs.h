@@ -9,6 +9,7 @@
 
 #include "pixelcloth/learn/predict.h"
 #include "pixelcloth/learn/training_data.h"
+#include "pixelcloth/stitch/stitcher.h"
 
 namespace pixelcloth::apps {
 
@@ -30,5 +31,20 @@ PredictionInputs posePredictionInputs(const std::filesystem::path& modelFolder, 
 
 /// Adds `--engine onednn|libtorch` (which runs the networks) to a verb.
 void addEngineOption(CLI::App& verb, std::string& engine);
+
+/// What --stitch and --pca said.
+struct StitchArgs {
+  std::string modes = "mean";
+  std::string pca;   ///< a PCA filter folder; empty: the model folder's pca/ (fitted there on first use)
+  int pcaRank = 0;   ///< rank when a filter is fitted here; 0: min(2048, train samples, 3 #V)
+};
+
+/// Adds `--stitch` (one mode, or several separated by commas when `several`), `--pca` and `--pca-rank` to a verb.
+void addStitchOptions(CLI::App& verb, StitchArgs& args, bool several);
+
+/// The stitchers of `args.modes` for `inputs`. A pca mode loads the filter in `args.pca` and checks that it was
+/// fitted on this dataset; without --pca it uses the model folder's pca/, fitting it on the dataset's train split
+/// (and saving it there) when it is missing or was fitted on another dataset.
+std::vector<stitch::Stitcher> makeStitchers(const StitchArgs& args, const PredictionInputs& inputs);
 
 }  // namespace pixelcloth::apps

@@ -27,5 +27,7 @@ void registerTrain(CLI::App& app);
 /// `predict` and `evaluate` (learn/, stitch/): garments from a trained model; its errors on a split.
 void registerPredict(CLI::App& app);
 void registerEvaluate(CLI::App& app);
+void registerPca(CLI::App& app);
+void registerStitch(CLI::App& app);
 
 }  // namespace pixelcloth::apps

@@ -312,33 +312,4 @@ void Model::setPcaBasis(const Eigen::VectorXf& mean, const Eigen::MatrixXf& comp
   decode->basis.copy_(toTensor(components));
 }
 
-Eigen::MatrixXf PcaBasis::project(const Eigen::MatrixXf& data) const {
-  PIXELCLOTH_CHECK(data.cols() == mean.size(), "pca: " << data.cols() << " values per row, expected " << mean.size());
-  return (data.rowwise() - mean.transpose()) * components.transpose();
-}
-
-Eigen::MatrixXf PcaBasis::reconstruct(const Eigen::MatrixXf& coefficients) const {
-  PIXELCLOTH_CHECK(coefficients.cols() == components.rows(),
-                   "pca: " << coefficients.cols() << " coefficients per row, expected " << components.rows());
-  return (coefficients * components).rowwise() + mean.transpose();
-}
-
-PcaBasis fitPca(const Eigen::MatrixXf& data, int components) {
-  const std::int64_t n = data.rows(), m = data.cols();
-  PIXELCLOTH_CHECK(n >= 1 && m >= 1 && data.allFinite(), "pca: " << n << " x " << m << " data, expected finite rows");
-  PIXELCLOTH_CHECK(components >= 1 && components <= std::min(n, m), "pca: " << components << " components of " << n
-                                                                            << " x " << m << " data, expected 1 to "
-                                                                            << std::min(n, m));
-  torch::NoGradGuard noGrad;
-  const torch::Tensor x = toTensor(data).to(torch::kFloat64);
-  const torch::Tensor mean = x.mean(0);
-  const auto [u, s, vh] = torch::linalg::svd(x - mean, /*full_matrices=*/false, c10::nullopt);
-  PcaBasis basis;
-  basis.mean = toEigen(mean.reshape({1, -1}).to(torch::kFloat32)).transpose();
-  basis.components = toEigen(vh.slice(0, 0, components).to(torch::kFloat32));
-  const torch::Tensor variance = s.slice(0, 0, components).pow(2) / std::max<std::int64_t>(n - 1, 1);
-  basis.variance = toEigen(variance.reshape({1, -1}).to(torch::kFloat32)).transpose();
-  return basis;
-}
-
 }  // namespace pixelcloth::learn

@@ -64,15 +64,13 @@ class WholeImageTarget : public Target {
 class PatchCropTarget : public Target {
  public:
   PatchCropTarget(const garment::Garment& garment, const patches::Patch& patch) {
-    const patches::ImageFrame frame = patches::cropFrame(garment, patch).frame;
-    const std::vector<int> faces = patches::enlargedPatchFaces(garment, patch, frame);
-    raster_ = patches::buildRaster(garment, patch.layout, faces, frame, patches::RasterOptions{4});
-    const patches::SampleOperator sample = patches::buildSample(garment, raster_);
-    vertices_ = sample.vertices;
-    shape_ = {3, frame.height, frame.width};
+    patches::EnlargedCrop crop = patches::enlargedCrop(garment, patch);
+    raster_ = std::move(crop.raster);
+    vertices_ = crop.sample.vertices;
+    shape_ = {3, crop.frame.height, crop.frame.width};
     mask_ = toTensor(raster_.maskImage()).gt(0.5).to(torch::kFloat32).unsqueeze(0);
-    sampler_ = sparseRows(sample.matrix, vertices_);
-    setMesh(garment, faces);
+    sampler_ = sparseRows(crop.sample.matrix, vertices_);
+    setMesh(garment, crop.faces);
   }
 
   torch::Tensor encode(const Eigen::MatrixXf& values) const override {

@@ -230,4 +230,13 @@ std::vector<int> enlargedPatchFaces(const garment::Garment& garment, const Patch
   return faces;
 }
 
+EnlargedCrop enlargedCrop(const garment::Garment& garment, const Patch& patch) {
+  EnlargedCrop crop;
+  crop.frame = cropFrame(garment, patch).frame;
+  crop.faces = enlargedPatchFaces(garment, patch, crop.frame);
+  crop.raster = buildRaster(garment, patch.layout, crop.faces, crop.frame, RasterOptions{4});
+  crop.sample = buildSample(garment, crop.raster);
+  return crop;
+}
+
 }  // namespace pixelcloth::patches

@@ -5,52 +5,108 @@
 
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/mesh.h"
+#include "pixelcloth/core/progress.h"
 #include "pixelcloth/patches/patch.h"
-#include "pixelcloth/stitch/assemble.h"
+#include "pixelcloth/stitch/seams.h"
 
 namespace pixelcloth::stitch {
 
-RowPredictions predictRows(const learn::TrainedModel& model, const learn::TrainingData& data,
-                           const std::vector<int>& rows) {
+namespace {
+
+void checkComplete(const learn::TrainedModel& model, const learn::TrainingData& data) {
   PIXELCLOTH_CHECK(model.residual() == data.residual(),
                    "predict: the model in " << model.folder().string() << (model.residual() ? " is" : " is not")
                                             << " a residual model, but its data was loaded "
                                             << (data.residual() ? "with" : "without") << " a base folder");
-  const int V = data.garment.mesh.numVertices();
-  if (model.architecture() == learn::Architecture::Patch) {
-    const std::vector<int> present = model.patches();
-    const size_t count = patches::garmentPatches(data.garment).size();
-    std::ostringstream missing;
-    for (size_t id = 0, k = 0; id < count; ++id) {
-      if (k < present.size() && present[k] == static_cast<int>(id)) {
-        ++k;
-        continue;
-      }
-      missing << (missing.tellp() > 0 ? "," : "") << id;
+  if (model.architecture() != learn::Architecture::Patch) return;
+  const std::vector<int> present = model.patches();
+  const size_t count = patches::garmentPatches(data.garment).size();
+  std::ostringstream missing;
+  for (size_t id = 0, k = 0; id < count; ++id) {
+    if (k < present.size() && present[k] == static_cast<int>(id)) {
+      ++k;
+      continue;
     }
-    PIXELCLOTH_CHECK(missing.str().empty(), model.folder().string()
-                                                << ": the garment needs all " << count << " patch decoders; "
-                                                << "missing: " << missing.str() << " (train them with --patches "
-                                                << missing.str() << " --out " << model.folder().string() << ")");
+    missing << (missing.tellp() > 0 ? "," : "") << id;
   }
+  PIXELCLOTH_CHECK(missing.str().empty(), model.folder().string()
+                                              << ": the garment needs all " << count << " patch decoders; "
+                                              << "missing: " << missing.str() << " (train them with --patches "
+                                              << missing.str() << " --out " << model.folder().string() << ")");
+}
+
+/// The networks' predictions of `chunk` (at most 16 rows at a time).
+std::vector<learn::NetworkPrediction> predictChunk(const learn::TrainedModel& model, const learn::TrainingData& data,
+                                                   const std::vector<int>& chunk) {
+  Eigen::MatrixXf inputs(chunk.size(), data.inputs.cols());
+  for (size_t k = 0; k < chunk.size(); ++k) {
+    PIXELCLOTH_CHECK(chunk[k] >= 0 && chunk[k] < data.rows(),
+                     "predict: row " << chunk[k] << " of a dataset of " << data.rows());
+    inputs.row(static_cast<Eigen::Index>(k)) = data.inputs.row(chunk[k]);
+  }
+  return model.predict(inputs);
+}
+
+/// Row `k` of batch x 3 #V values as #V x 3.
+Eigen::MatrixX3f vertexRows(const Eigen::MatrixXf& values, Eigen::Index k, int V) {
+  Eigen::MatrixX3f out(V, 3);
+  for (int v = 0; v < V; ++v) out.row(v) = values.block<1, 3>(k, 3 * v);
+  return out;
+}
+
+/// The stitched garments of a chunk: assembled, base added, refined; (values, positions) per row.
+void stitchChunk(const Stitcher* stitcher, const std::vector<learn::NetworkPrediction>& predictions,
+                 const learn::TrainingData& data, const std::vector<int>& chunk, RowPredictions& out) {
+  const int V = data.garment.mesh.numVertices();
+  Eigen::MatrixXf assembled = stitcher ? stitcher->assemble(predictions) : assembleMean(predictions, V);
+  if (data.residual())
+    for (size_t k = 0; k < chunk.size(); ++k)
+      for (int v = 0; v < V; ++v)
+        assembled.block<1, 3>(static_cast<Eigen::Index>(k), 3 * v) += data.base[chunk[k]].row(v);
+  if (stitcher) assembled = stitcher->refine(assembled);
+  for (size_t k = 0; k < chunk.size(); ++k) {
+    Eigen::MatrixX3f values = vertexRows(assembled, static_cast<Eigen::Index>(k), V);
+    out.rows.push_back(chunk[k]);
+    out.positions.push_back(learn::positionsFromValues(data.space, data.frames[chunk[k]], values));
+    out.values.push_back(std::move(values));
+  }
+}
+
+/// Each network's own positions of its vertices for row `k` of the chunk (base added), before blending.
+std::vector<Eigen::MatrixX3d> separatePositions(const std::vector<learn::NetworkPrediction>& predictions,
+                                                const learn::TrainingData& data, int row, Eigen::Index k) {
+  const int V = data.garment.mesh.numVertices();
+  std::vector<Eigen::MatrixX3d> out;
+  for (const learn::NetworkPrediction& p : predictions) {
+    Eigen::MatrixX3f values = Eigen::MatrixX3f::Zero(V, 3);
+    if (data.residual()) values = data.base[row];
+    for (size_t i = 0; i < p.vertices.size(); ++i)
+      values.row(p.vertices[i]) += p.values.block<1, 3>(k, 3 * static_cast<Eigen::Index>(i));
+    const Eigen::MatrixX3d all = learn::positionsFromValues(data.space, data.frames[row], values);
+    Eigen::MatrixX3d own(static_cast<Eigen::Index>(p.vertices.size()), 3);
+    for (size_t i = 0; i < p.vertices.size(); ++i) own.row(static_cast<Eigen::Index>(i)) = all.row(p.vertices[i]);
+    out.push_back(std::move(own));
+  }
+  return out;
+}
+
+/// Running sums of one stitch mode's errors over a split.
+struct Tally {
+  explicit Tally(const SeamLayout& layout, int V) : seams(layout), vertexErrorCm(Eigen::VectorXd::Zero(V)) {}
+  SeamMetrics seams;
+  Eigen::VectorXd vertexErrorCm;
+  double cosine = 0, maxError = 0;
+};
+
+}  // namespace
+
+RowPredictions predictRows(const learn::TrainedModel& model, const learn::TrainingData& data,
+                           const std::vector<int>& rows, const Stitcher* stitcher) {
+  checkComplete(model, data);
   RowPredictions out;
   for (size_t first = 0; first < rows.size(); first += 16) {
     const std::vector<int> chunk(rows.begin() + first, rows.begin() + std::min(rows.size(), first + 16));
-    Eigen::MatrixXf inputs(chunk.size(), data.inputs.cols());
-    for (size_t k = 0; k < chunk.size(); ++k) {
-      PIXELCLOTH_CHECK(chunk[k] >= 0 && chunk[k] < data.rows(),
-                       "predict: row " << chunk[k] << " of a dataset of " << data.rows());
-      inputs.row(k) = data.inputs.row(chunk[k]);
-    }
-    const Eigen::MatrixXf assembled = assembleMean(model.predict(inputs), V);
-    for (size_t k = 0; k < chunk.size(); ++k) {
-      Eigen::MatrixX3f values(V, 3);
-      for (int v = 0; v < V; ++v) values.row(v) = assembled.block<1, 3>(k, 3 * v);
-      if (data.residual()) values += data.base[chunk[k]];
-      out.rows.push_back(chunk[k]);
-      out.positions.push_back(learn::positionsFromValues(data.space, data.frames[chunk[k]], values));
-      out.values.push_back(std::move(values));
-    }
+    stitchChunk(stitcher, predictChunk(model, data, chunk), data, chunk, out);
   }
   return out;
 }
@@ -62,48 +118,82 @@ double Evaluation::vertexErrorQuantileCm(double q) const {
   return sorted(static_cast<Eigen::Index>(q * (sorted.size() - 1)));
 }
 
-Evaluation evaluate(const learn::TrainedModel& model, const learn::TrainingData& data, const std::string& split) {
+std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::TrainingData& data,
+                                 const std::string& split, const std::vector<const Stitcher*>& stitchers) {
   const std::vector<int>& rows = data.split(split);
   PIXELCLOTH_CHECK(!rows.empty(), "evaluate: " << data.folder.string() << " has no " << split << " samples");
-  const RowPredictions predicted = predictRows(model, data, rows);
+  checkComplete(model, data);
+  const std::vector<const Stitcher*> modes = stitchers.empty() ? std::vector<const Stitcher*>{nullptr} : stitchers;
   const core::Mesh& mesh = data.garment.mesh;
   const int V = mesh.numVertices();
-  Evaluation evaluation;
-  evaluation.vertexErrorCm = Eigen::VectorXd::Zero(V);
-  double cosine = 0, maxError = 0, baseError = 0;
-  for (size_t k = 0; k < rows.size(); ++k) {
-    const Eigen::MatrixX3d truth = data.truth[rows[k]].cast<double>();
-    const Eigen::VectorXd error = 100 * (predicted.positions[k] - truth).rowwise().norm();
-    evaluation.vertexErrorCm += error;
-    maxError = std::max(maxError, error.maxCoeff());
-    const Eigen::MatrixX3d a = core::vertexNormals(predicted.positions[k], mesh.F),
-                           b = core::vertexNormals(truth, mesh.F);
-    cosine += (a.array() * b.array()).rowwise().sum().mean();
-    if (data.residual()) {
-      const Eigen::MatrixX3d base = learn::positionsFromValues(data.space, data.frames[rows[k]], data.base[rows[k]]);
-      baseError += 100 * (base - truth).rowwise().norm().mean();
+  const SeamLayout layout(data.garment);
+  std::vector<Tally> tallies;
+  for (size_t m = 0; m < modes.size(); ++m) tallies.emplace_back(layout, V);
+  double baseError = 0;
+  core::Progress progress("evaluate " + split, static_cast<std::int64_t>(rows.size()));
+  for (size_t first = 0; first < rows.size(); first += 16) {
+    const std::vector<int> chunk(rows.begin() + first, rows.begin() + std::min(rows.size(), first + 16));
+    const std::vector<learn::NetworkPrediction> predictions = predictChunk(model, data, chunk);
+    std::vector<std::vector<Eigen::MatrixX3d>> separate;
+    if (model.architecture() == learn::Architecture::Patch)
+      for (size_t k = 0; k < chunk.size(); ++k)
+        separate.push_back(separatePositions(predictions, data, chunk[k], static_cast<Eigen::Index>(k)));
+    for (size_t m = 0; m < modes.size(); ++m) {
+      RowPredictions predicted;
+      stitchChunk(modes[m], predictions, data, chunk, predicted);
+      Tally& tally = tallies[m];
+      for (size_t k = 0; k < chunk.size(); ++k) {
+        const Eigen::MatrixX3d truth = data.truth[chunk[k]].cast<double>();
+        const Eigen::VectorXd error = 100 * (predicted.positions[k] - truth).rowwise().norm();
+        tally.vertexErrorCm += error;
+        tally.maxError = std::max(tally.maxError, error.maxCoeff());
+        const Eigen::MatrixX3d a = core::vertexNormals(predicted.positions[k], mesh.F),
+                               b = core::vertexNormals(truth, mesh.F);
+        tally.cosine += (a.array() * b.array()).rowwise().sum().mean();
+        std::vector<PredictedPositions> parts;
+        if (!separate.empty())
+          for (size_t p = 0; p < predictions.size(); ++p) parts.push_back({&predictions[p].vertices, separate[k][p]});
+        tally.seams.add(parts, predicted.positions[k], truth);
+      }
     }
+    if (data.residual())
+      for (int row : chunk) {
+        const Eigen::MatrixX3d truth = data.truth[row].cast<double>();
+        const Eigen::MatrixX3d base = learn::positionsFromValues(data.space, data.frames[row], data.base[row]);
+        baseError += 100 * (base - truth).rowwise().norm().mean();
+      }
+    progress.advance(static_cast<std::int64_t>(chunk.size()));
   }
+  progress.finish();
   const double n = static_cast<double>(rows.size());
-  evaluation.vertexErrorCm /= n;
-  nlohmann::json patchList = nlohmann::json::array();
-  for (const patches::Patch& patch : patches::garmentPatches(data.garment)) {
-    double sum = 0;
-    for (int v : patch.vertices) sum += evaluation.vertexErrorCm(v);
-    patchList.push_back({{"id", patch.id},
-                         {"layout", data.garment.layouts[patch.layout]},
-                         {"vertices", patch.vertices.size()},
-                         {"vertex_error_cm", sum / patch.vertices.size()}});
+  std::vector<Evaluation> out;
+  for (size_t m = 0; m < modes.size(); ++m) {
+    Evaluation evaluation;
+    evaluation.vertexErrorCm = tallies[m].vertexErrorCm / n;
+    nlohmann::json patchList = nlohmann::json::array();
+    for (const patches::Patch& patch : patches::garmentPatches(data.garment)) {
+      double sum = 0;
+      for (int v : patch.vertices) sum += evaluation.vertexErrorCm(v);
+      patchList.push_back({{"id", patch.id},
+                           {"layout", data.garment.layouts[patch.layout]},
+                           {"vertices", patch.vertices.size()},
+                           {"vertex_error_cm", sum / patch.vertices.size()}});
+    }
+    const double cosine = tallies[m].cosine / n;
+    evaluation.metrics = {
+        {"split", split},
+        {"samples", rows.size()},
+        {"stitch", modes[m] ? modes[m]->mode().name() : std::string("mean")},
+        {"vertex_error_cm", evaluation.vertexErrorCm.mean()},
+        {"max_vertex_error_cm", tallies[m].maxError},
+        {"normal_cosine", cosine},
+        {"normal_cosine_distance", 1 - cosine},
+        {"base_vertex_error_cm", data.residual() ? nlohmann::json(baseError / n) : nlohmann::json()},
+        {"patches", patchList},
+        {"seams", tallies[m].seams.toJson()}};
+    out.push_back(std::move(evaluation));
   }
-  evaluation.metrics = {{"split", split},
-                        {"samples", rows.size()},
-                        {"vertex_error_cm", evaluation.vertexErrorCm.mean()},
-                        {"max_vertex_error_cm", maxError},
-                        {"normal_cosine", cosine / n},
-                        {"normal_cosine_distance", 1 - cosine / n},
-                        {"base_vertex_error_cm", data.residual() ? nlohmann::json(baseError / n) : nlohmann::json()},
-                        {"patches", patchList}};
-  return evaluation;
+  return out;
 }
 
 }  // namespace pixelcloth::stitch

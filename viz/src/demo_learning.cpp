@@ -95,7 +95,7 @@ void demoLearning(Report& report, const body::Body& body, const DemoOptions& dem
       const learn::TrainingData data =
           learn::loadTrainingData(datasetFolder, model.space(), m.residual ? baseFolder : fs::path());
       const std::string split = data.test.empty() ? "train" : "test";
-      const stitch::Evaluation evaluation = stitch::evaluate(model, data, split);
+      const stitch::Evaluation evaluation = stitch::evaluate(model, data, split).front();
       table[m.name]["split"] = split;
       table[m.name]["samples"] = evaluation.metrics["samples"];
       table[m.name]["dataset_samples"] = data.rows();

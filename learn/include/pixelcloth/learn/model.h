@@ -98,8 +98,20 @@ struct PcaBasis {
   Eigen::MatrixXf reconstruct(const Eigen::MatrixXf& coefficients) const;
 };
 
+/// How fitPca finds the components.
+enum class PcaMethod {
+  Svd,         ///< LibTorch's SVD of the centred data in double precision: exact, slow beyond a few thousand columns
+  Gram,        ///< the smaller Gram matrix (X^T X or X X^T) by sgemm, its eigenvectors by LAPACK in double precision
+  Randomized,  ///< a randomised range finder (Halko et al. 2011) with two power iterations, then a small eigensolve
+};
+/// "svd", "gram", "randomized".
+const char* pcaMethodName(PcaMethod method);
+PcaMethod pcaMethodFromName(const std::string& name, const std::string& context);
+
 /// The first `components` principal components of `data` (#samples x #values; e.g. a training split's offsets, one
-/// sample a row), by LibTorch's SVD of the centred data. `components` is at most min(#samples, #values).
-PcaBasis fitPca(const Eigen::MatrixXf& data, int components);
+/// sample a row). `components` is at most min(#samples, #values). Components are signed so that each one's largest
+/// entry in magnitude is positive. `seed` seeds the randomised method's test matrix.
+PcaBasis fitPca(const Eigen::MatrixXf& data, int components, PcaMethod method = PcaMethod::Svd,
+                std::uint64_t seed = 0);
 
 }  // namespace pixelcloth::learn

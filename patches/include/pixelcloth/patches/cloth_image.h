@@ -114,4 +114,15 @@ PatchCrop cropFrame(const garment::Garment& garment, const Patch& patch, int ima
 std::vector<int> enlargedPatchFaces(const garment::Garment& garment, const Patch& patch, const ImageFrame& frame,
                                     double context = 16);
 
+/// What a patch decoder's 160 x 160 image holds (the learning targets and `pixelcloth stitch` read it the same way): the
+/// enlarged patch's faces rasterised in the patch's crop with 4 px of padding, and the operator that samples the
+/// image back to the vertices it covers.
+struct EnlargedCrop {
+  ImageFrame frame;        ///< the crop (cropFrame)
+  std::vector<int> faces;  ///< enlargedPatchFaces
+  RasterOperator raster;
+  SampleOperator sample;   ///< sample.vertices: the garment vertices the decoder predicts, sorted
+};
+EnlargedCrop enlargedCrop(const garment::Garment& garment, const Patch& patch);
+
 }  // namespace pixelcloth::patches

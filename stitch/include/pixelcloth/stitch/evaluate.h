@@ -1,7 +1,7 @@
 #pragma once
 
-// Garments predicted for dataset samples by a trained model, and their errors against ground truth (DESIGN.md,
-// "Metrics"; the seam-continuity metrics come with issue 14).
+// Garments predicted for dataset samples by a trained model, and their errors and seam continuity against ground
+// truth (DESIGN.md, "Metrics").
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
@@ -10,33 +10,39 @@
 
 #include "pixelcloth/learn/predict.h"
 #include "pixelcloth/learn/training_data.h"
+#include "pixelcloth/stitch/stitcher.h"
 
 namespace pixelcloth::stitch {
 
 /// Predicted garments of some dataset rows.
 struct RowPredictions {
   std::vector<int> rows;
-  std::vector<Eigen::MatrixX3f> values;     ///< per row: #V x 3 in the model's space, the base added back
+  std::vector<Eigen::MatrixX3f> values;     ///< per row: #V x 3 in the model's space, the base added
   std::vector<Eigen::MatrixX3d> positions;  ///< per row: #V x 3, metres
 };
 
 /// Predicts `rows` of `data` (loaded in the model's space, with its base folder in residual mode): the networks'
-/// outputs assembled by the per-vertex mean, the base added, positions through the row's posed frames.
+/// outputs assembled by `stitcher` (nullptr: the per-vertex mean), the base added, then the stitcher's filter or
+/// blender, positions through the row's posed frames. Throws InputError naming the missing patches of an incomplete
+/// patch model.
 RowPredictions predictRows(const learn::TrainedModel& model, const learn::TrainingData& data,
-                           const std::vector<int>& rows);
+                           const std::vector<int>& rows, const Stitcher* stitcher = nullptr);
 
-/// What evaluate() measured.
+/// What evaluate() measured for one stitch mode.
 struct Evaluation {
-  /// {"split", "samples", "vertex_error_cm", "max_vertex_error_cm", "normal_cosine" (mean cosine between predicted
-  /// and true per-vertex normals), "normal_cosine_distance" (1 - that), "base_vertex_error_cm" (residual mode: the
-  /// marker reconstruction alone; null otherwise), "patches": [{"id", "layout", "vertices", "vertex_error_cm"}]}.
+  /// {"split", "samples", "stitch" (the mode's name), "vertex_error_cm", "max_vertex_error_cm", "normal_cosine" (mean
+  /// cosine between predicted and true per-vertex normals), "normal_cosine_distance" (1 - that),
+  /// "base_vertex_error_cm" (residual mode: the marker reconstruction alone; null otherwise), "patches": [{"id",
+  /// "layout", "vertices", "vertex_error_cm"}], "seams": SeamMetrics::toJson()}.
   nlohmann::json metrics;
   Eigen::VectorXd vertexErrorCm;  ///< #V: each vertex's mean error over the split, cm
   /// The `q`-quantile (0 to 1) of vertexErrorCm, cm: e.g. the top of an error map's colour scale.
   double vertexErrorQuantileCm(double q) const;
 };
 
-/// Predicts every row of `split` and compares with ground truth. Throws InputError for an empty split.
-Evaluation evaluate(const learn::TrainedModel& model, const learn::TrainingData& data, const std::string& split);
+/// Predicts every row of `split` once and compares each of `stitchers` (empty: the plain mean) with ground truth; one
+/// Evaluation per stitcher, in order. Throws InputError for an empty split.
+std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::TrainingData& data,
+                                 const std::string& split, const std::vector<const Stitcher*>& stitchers = {});
 
 }  // namespace pixelcloth::stitch

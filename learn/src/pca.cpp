@@ -4,6 +4,8 @@
 #include <torch/torch.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <thread>
 
 #include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
@@ -16,6 +18,22 @@ namespace {
 
 const core::EnumNames<PcaMethod, 3> kMethods{
     "PCA method", {{{PcaMethod::Svd, "svd"}, {PcaMethod::Gram, "gram"}, {PcaMethod::Randomized, "randomized"}}}};
+
+/// LibTorch's intra-op threads (and so OpenBLAS's) at one per core for the length of a fit, and back after: LibTorch
+/// starts with one on these machines. OMP_NUM_THREADS, when set, has the last word.
+class AllCores {
+ public:
+  AllCores() : saved_(at::get_num_threads()) {
+    if (std::getenv("OMP_NUM_THREADS") == nullptr)
+      at::set_num_threads(std::max(1, static_cast<int>(std::thread::hardware_concurrency())));
+  }
+  ~AllCores() { at::set_num_threads(saved_); }
+  AllCores(const AllCores&) = delete;
+  AllCores& operator=(const AllCores&) = delete;
+
+ private:
+  int saved_;
+};
 
 /// Orthonormal columns spanning those of `a` (reduced QR).
 torch::Tensor orthonormalColumns(const torch::Tensor& a) { return std::get<0>(torch::linalg::qr(a, "reduced")); }
@@ -68,6 +86,7 @@ PcaBasis fitPca(const Eigen::MatrixXf& data, int components, PcaMethod method, s
                                                                             << " x " << m << " data, expected 1 to "
                                                                             << std::min(n, m));
   torch::NoGradGuard noGrad;
+  const AllCores cores;
   const std::int64_t k = components;
   const double dof = static_cast<double>(std::max<std::int64_t>(n - 1, 1));
   torch::Tensor x = toTensor(data);
@@ -92,18 +111,16 @@ PcaBasis fitPca(const Eigen::MatrixXf& data, int components, PcaMethod method, s
       return finish(mean, orthonormalColumns(v).t(), values / dof);
     }
     case PcaMethod::Randomized: {
-      // Range finder: l = k plus oversampling columns, two power iterations re-orthonormalised each time.
+      // The range finder on the values' side (Halko et al. 2011, section 4 with one power iteration): Z spans
+      // (X^T X) Omega, l = k plus oversampling columns, orthonormalised once (a QR of #values rows, the cheaper side).
+      // The SVD of X Z then gives the components as Z W: three products the size of X, one QR, one small eigensolve.
       const std::int64_t l = std::min<std::int64_t>(std::min(n, m), k + std::max<std::int64_t>(16, k / 8));
       torch::Generator generator = at::detail::createCPUGenerator(seed);
       const torch::Tensor omega = torch::randn({m, l}, generator, torch::dtype(torch::kFloat32));
-      torch::Tensor q = orthonormalColumns(torch::mm(x, omega));
-      for (int i = 0; i < 2; ++i) q = orthonormalColumns(torch::mm(x, orthonormalColumns(torch::mm(x.t(), q))));
-      // B = Q^T X (l x m); its right singular vectors from the l x l matrix B B^T (the QR as for the Gram method).
-      const torch::Tensor b = torch::mm(q.t(), x);
-      const auto [values, u] = topEigen(torch::mm(b, b.t()), k);
-      const torch::Tensor sigma = values.sqrt();
-      const torch::Tensor v = torch::mm(b.t(), u) / torch::where(sigma > 0, sigma, torch::ones_like(sigma));
-      return finish(mean, orthonormalColumns(v).t(), values / dof);
+      const torch::Tensor z = orthonormalColumns(torch::mm(x.t(), torch::mm(x, omega)));
+      const torch::Tensor c = torch::mm(x, z);  // n x l
+      const auto [values, w] = topEigen(torch::mm(c.t(), c), k);
+      return finish(mean, torch::mm(z, w).t(), values / dof);  // orthonormal columns times an orthogonal W
     }
   }
   PIXELCLOTH_ASSERT(false, "unknown PCA method");

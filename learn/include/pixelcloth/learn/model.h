@@ -102,7 +102,7 @@ struct PcaBasis {
 enum class PcaMethod {
   Svd,         ///< LibTorch's SVD of the centred data in double precision: exact, slow beyond a few thousand columns
   Gram,        ///< the smaller Gram matrix (X^T X or X X^T) by sgemm, its eigenvectors by LAPACK in double precision
-  Randomized,  ///< a randomised range finder (Halko et al. 2011) with two power iterations, then a small eigensolve
+  Randomized,  ///< a randomised range finder (Halko et al. 2011) with one power iteration, then a small eigensolve
 };
 /// "svd", "gram", "randomized".
 const char* pcaMethodName(PcaMethod method);

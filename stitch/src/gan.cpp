@@ -33,7 +33,9 @@ std::string firstLine(const c10::Error& e) {
   return what.substr(0, what.find('\n'));
 }
 
-nlohmann::json numberOrNull(double value) { return std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value); }
+nlohmann::json numberOrNull(double value) {
+  return std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value);
+}
 
 /// Mean per-vertex distance (cm) between positions and the true ones.
 double vertexErrorCm(const Eigen::MatrixX3d& positions, const Eigen::MatrixXf& truth) {
@@ -47,8 +49,8 @@ std::vector<Eigen::MatrixXf> blendValues(UNetGenerator& generator, const ClothTe
   generator->eval();
   std::vector<Eigen::MatrixXf> out;
   for (size_t first = 0; first < values.size(); first += kEvaluationChunk) {
-    const std::vector<const Eigen::MatrixXf*> chunk(
-        values.begin() + first, values.begin() + std::min(values.size(), first + kEvaluationChunk));
+    const std::vector<const Eigen::MatrixXf*> chunk(values.begin() + first,
+                                                    values.begin() + std::min(values.size(), first + kEvaluationChunk));
     const torch::Tensor blended = generator->forward(images.images(chunk));
     for (size_t k = 0; k < chunk.size(); ++k) out.push_back(images.values(blended[k]));
   }
@@ -75,7 +77,8 @@ std::vector<const Eigen::MatrixXf*> pointers(const std::vector<Eigen::MatrixXf>&
 
 /// Per-channel mean and standard deviation of `images`' pixels on the mask, over every stitched training input: the
 /// generator's normalisation. The standard deviation is kept at least 1 mm.
-void setNormalisation(UNetGenerator& generator, const ClothTensors& images, const std::vector<Eigen::MatrixXf>& inputs) {
+void setNormalisation(UNetGenerator& generator, const ClothTensors& images,
+                      const std::vector<Eigen::MatrixXf>& inputs) {
   torch::NoGradGuard noGrad;
   torch::Tensor sum = torch::zeros({6}, torch::kFloat64), squares = torch::zeros({6}, torch::kFloat64);
   const torch::Tensor mask = images.mask().to(torch::kFloat64);
@@ -134,10 +137,10 @@ GanReport trainGan(const learn::TrainedModel& patchModel, const learn::TrainingD
                               "train --model patch)");
   const nlohmann::json& sidecar = patchModel.sidecar();
   PIXELCLOTH_CHECK(sidecar.value("dataset_manifest_crc32", std::uint64_t{0}) == data.manifestCrc,
-                   "gan: the patch model in " << modelName << " was trained on " << sidecar.value("dataset", "?")
-                                              << " (manifest CRC " << sidecar.value("dataset_manifest_crc32", std::uint64_t{0})
-                                              << "), not on " << data.folder.string() << " (manifest CRC "
-                                              << data.manifestCrc << ")");
+                   "gan: the patch model in "
+                       << modelName << " was trained on " << sidecar.value("dataset", "?") << " (manifest CRC "
+                       << sidecar.value("dataset_manifest_crc32", std::uint64_t{0}) << "), not on "
+                       << data.folder.string() << " (manifest CRC " << data.manifestCrc << ")");
   PIXELCLOTH_CHECK(patchModel.space() == data.space,
                    "gan: the patch model in " << modelName << " predicts " << learn::offsetSpaceName(patchModel.space())
                                               << " values, but " << data.folder.string() << " was loaded in "
@@ -169,31 +172,30 @@ GanReport trainGan(const learn::TrainedModel& patchModel, const learn::TrainingD
 
   const std::int64_t generatorParameters = parameterCount(*networks.generator),
                      discriminatorParameters = parameterCount(*networks.discriminator);
-  nlohmann::json info = {
-      {"format", "pixelcloth.model"},
-      {"version", 1},
-      {"architecture", "gan"},
-      {"width", options.width},
-      {"image", {6, 256, 256}},
-      {"generator", "pix2pix unet_256, residual"},
-      {"discriminator", "pix2pix PatchGAN 70x70 (n_layers 3) on input and output"},
-      {"generator_parameters", generatorParameters},
-      {"discriminator_parameters", discriminatorParameters},
-      {"adversarial_loss", "bce_with_logits"},
-      {"l1_weight", options.l1Weight},
-      {"learning_rate", options.learningRate},
-      {"batch", options.batch},
-      {"seed", options.seed},
-      {"garment", data.garment.name},
-      {"vertices", data.garment.mesh.numVertices()},
-      {"space", learn::offsetSpaceName(data.space)},
-      {"patch_model", absolutePath(patchModel.folder())},
-      {"patch_model_width", sidecar.value("width", 0.0)},
-      {"dataset", absolutePath(data.folder)},
-      {"dataset_manifest_crc32", data.manifestCrc},
-      {"residual", data.residual() ? nlohmann::json{{"folder", absolutePath(data.baseFolder)},
-                                                    {"manifest_crc32", data.baseCrc}}
-                                   : nlohmann::json(nullptr)}};
+  nlohmann::json info = {{"format", "pixelcloth.model"},
+                         {"version", 1},
+                         {"architecture", "gan"},
+                         {"width", options.width},
+                         {"image", {6, 256, 256}},
+                         {"generator", "pix2pix unet_256, residual"},
+                         {"discriminator", "pix2pix PatchGAN 70x70 (n_layers 3) on input and output"},
+                         {"generator_parameters", generatorParameters},
+                         {"discriminator_parameters", discriminatorParameters},
+                         {"adversarial_loss", "bce_with_logits"},
+                         {"l1_weight", options.l1Weight},
+                         {"learning_rate", options.learningRate},
+                         {"batch", options.batch},
+                         {"seed", options.seed},
+                         {"garment", data.garment.name},
+                         {"vertices", data.garment.mesh.numVertices()},
+                         {"space", learn::offsetSpaceName(data.space)},
+                         {"patch_model", absolutePath(patchModel.folder())},
+                         {"patch_model_width", sidecar.value("width", 0.0)},
+                         {"dataset", absolutePath(data.folder)},
+                         {"dataset_manifest_crc32", data.manifestCrc},
+                         {"residual", data.residual() ? nlohmann::json{{"folder", absolutePath(data.baseFolder)},
+                                                                       {"manifest_crc32", data.baseCrc}}
+                                                      : nlohmann::json(nullptr)}};
   core::ensureOutputFolder(out);
 
   GanReport report;
@@ -225,10 +227,10 @@ GanReport trainGan(const learn::TrainedModel& patchModel, const learn::TrainingD
     }
     if (progress) progress->finish();
     record.stitchedErrorCm = stitchedErrorCm;
-    record.regularisationErrorCm =
-        meanErrorCm(data, data.regularisation,
-                    data.regularisation.empty() ? std::vector<Eigen::MatrixXf>()
-                                                : blendValues(networks.generator, images, pointers(stitchedRegularisation)));
+    record.regularisationErrorCm = meanErrorCm(
+        data, data.regularisation,
+        data.regularisation.empty() ? std::vector<Eigen::MatrixXf>()
+                                    : blendValues(networks.generator, images, pointers(stitchedRegularisation)));
     record.seconds = secondsSince(epochStart);
     report.epochs.push_back(record);
     // Model selection on the regularisation split (the test split is only for reporting); without one, the last.
@@ -247,10 +249,10 @@ GanReport trainGan(const learn::TrainedModel& patchModel, const learn::TrainingD
     core::writeTextAtomically(out / "log.csv", csvOf(report.epochs));
     if (!options.quiet)
       PIXELCLOTH_INFO("train gan: epoch " << epoch << "/" << options.epochs << ": L1 " << record.generatorL1 * 100
-                                        << " cm, adversarial " << record.generatorAdversarial << ", discriminator "
-                                        << record.discriminator << "; regularisation " << record.regularisationErrorCm
-                                        << " cm blended, " << stitchedErrorCm << " cm stitched; " << record.seconds
-                                        << " s");
+                                          << " cm, adversarial " << record.generatorAdversarial << ", discriminator "
+                                          << record.discriminator << "; regularisation " << record.regularisationErrorCm
+                                          << " cm blended, " << stitchedErrorCm << " cm stitched; " << record.seconds
+                                          << " s");
   }
   report.seconds = secondsSince(start);
   return report;
@@ -280,7 +282,8 @@ GanBlender::GanBlender(const fs::path& folder, const garment::Garment& garment) 
   PIXELCLOTH_CHECK(architecture == "gan",
                    context << ": a " << architecture << " model, expected a GAN blender (architecture gan)");
   const double width = core::requireValue<double>(info, "width", context);
-  PIXELCLOTH_CHECK(std::isfinite(width) && width > 0 && width <= 4, context << ": width " << width << ", expected (0, 4]");
+  PIXELCLOTH_CHECK(std::isfinite(width) && width > 0 && width <= 4,
+                   context << ": width " << width << ", expected (0, 4]");
   const std::string garmentName = core::requireValue<std::string>(info, "garment", context);
   const int vertices = core::requireValue<int>(info, "vertices", context);
   PIXELCLOTH_CHECK(garmentName == garment.name && vertices == garment.mesh.numVertices(),
@@ -290,22 +293,24 @@ GanBlender::GanBlender(const fs::path& folder, const garment::Garment& garment) 
 
   impl_->generator = UNetGenerator(width);
   const auto expected = shapesOf(*impl_->generator);
-  PIXELCLOTH_CHECK(fs::is_regular_file(weightsPath, ec),
-                   weightsPath.string() << ": no such file (the weights of the GAN blender " << context << " describes)");
+  PIXELCLOTH_CHECK(fs::is_regular_file(weightsPath, ec), weightsPath.string()
+                                                             << ": no such file (the weights of the GAN blender "
+                                                             << context << " describes)");
   const std::string what = "a GAN generator of width " + std::to_string(width) + " (" + context + ")";
   try {
     torch::serialize::InputArchive archive;
     archive.load_from(weightsPath.string());
     impl_->generator->load(archive);
   } catch (const c10::Error& e) {
-    PIXELCLOTH_FAIL(weightsPath.string() << ": not the weights of " << what << " (truncated, or from another model): "
-                                         << firstLine(e));
+    PIXELCLOTH_FAIL(weightsPath.string() << ": not the weights of " << what
+                                         << " (truncated, or from another model): " << firstLine(e));
   }
-  PIXELCLOTH_CHECK(shapesOf(*impl_->generator) == expected,
-                   weightsPath.string() << ": its tensors do not have the shapes of " << what
-                                        << " (another architecture or width)");
-  PIXELCLOTH_CHECK(impl_->generator->scale.gt(0).all().item<bool>() && impl_->generator->mean.isfinite().all().item<bool>(),
-                   weightsPath.string() << ": its normalisation (mean, scale) is not finite and positive");
+  PIXELCLOTH_CHECK(shapesOf(*impl_->generator) == expected, weightsPath.string()
+                                                                << ": its tensors do not have the shapes of " << what
+                                                                << " (another architecture or width)");
+  PIXELCLOTH_CHECK(
+      impl_->generator->scale.gt(0).all().item<bool>() && impl_->generator->mean.isfinite().all().item<bool>(),
+      weightsPath.string() << ": its normalisation (mean, scale) is not finite and positive");
   impl_->generator->eval();
 }
 
@@ -345,8 +350,7 @@ nlohmann::json ganSummary(double width) {
   discriminator->eval();
   std::vector<std::vector<std::int64_t>> generatorShapes, discriminatorShapes;
   const torch::Tensor output = generator->forward(torch::zeros({1, 6, 256, 256}), &generatorShapes);
-  const torch::Tensor logits =
-      discriminator->forward(torch::zeros({1, 12, 256, 256}), &discriminatorShapes);
+  const torch::Tensor logits = discriminator->forward(torch::zeros({1, 12, 256, 256}), &discriminatorShapes);
   auto layers = [](const std::vector<std::vector<std::int64_t>>& shapes, const std::vector<std::string>& names) {
     nlohmann::json list = nlohmann::json::array();
     for (size_t k = 0; k < shapes.size(); ++k) list.push_back({{"name", names[k]}, {"output", shapes[k]}});

@@ -158,8 +158,8 @@ GanNetworks::GanNetworks(double width, double learningRate, std::uint64_t seed)
 
 GanStepLosses GanNetworks::step(const torch::Tensor& x, const torch::Tensor& y, const torch::Tensor& mask,
                                 double l1Weight) {
-  TORCH_CHECK(x.sizes() == y.sizes() && mask.dim() == 3 && mask.sizes() == x.sizes().slice(1),
-              "a GAN step on inputs ", x.sizes(), ", targets ", y.sizes(), " and mask ", mask.sizes());
+  TORCH_CHECK(x.sizes() == y.sizes() && mask.dim() == 3 && mask.sizes() == x.sizes().slice(1), "a GAN step on inputs ",
+              x.sizes(), ", targets ", y.sizes(), " and mask ", mask.sizes());
   generator->train();
   discriminator->train();
   const torch::Tensor fake = generator->forward(x);
@@ -187,11 +187,11 @@ GanStepLosses GanNetworks::step(const torch::Tensor& x, const torch::Tensor& y, 
 ClothTensors::ClothTensors(const garment::Garment& garment, const std::string& context) : imager_(garment) {
   std::ostringstream layouts;
   for (const std::string& name : imager_.layouts()) layouts << (layouts.tellp() > 0 ? ", " : "") << name;
-  PIXELCLOTH_CHECK(imager_.layouts() == (std::vector<std::string>{"front", "back"}) &&
-                       imager_.width() == kImageSize && imager_.height() == kImageSize,
+  PIXELCLOTH_CHECK(imager_.layouts() == (std::vector<std::string>{"front", "back"}) && imager_.width() == kImageSize &&
+                       imager_.height() == kImageSize,
                    context << ": the GAN blender takes the T-shirt's 6 x 256 x 256 cloth images (layouts front and "
-                           << "back); the " << garment.name << "'s are " << imager_.width() << " x "
-                           << imager_.height() << " with layouts " << layouts.str());
+                           << "back); the " << garment.name << "'s are " << imager_.width() << " x " << imager_.height()
+                           << " with layouts " << layouts.str());
   blank_ = imager_.rasterize(Eigen::MatrixXf::Zero(imager_.numVertices(), 3));
   mask_ = torch::zeros({kImageChannels, kImageSize, kImageSize});
   for (int l = 0; l < 2; ++l) {
@@ -218,9 +218,9 @@ torch::Tensor ClothTensors::images(const std::vector<const Eigen::MatrixXf*>& va
 }
 
 Eigen::MatrixXf ClothTensors::values(const torch::Tensor& image) const {
-  PIXELCLOTH_ASSERT(image.dim() == 3 && image.size(0) == kImageChannels && image.size(1) == kImageSize &&
-                        image.size(2) == kImageSize,
-                    "a cloth image tensor of " << image.sizes() << ", expected 6 x 256 x 256");
+  PIXELCLOTH_ASSERT(
+      image.dim() == 3 && image.size(0) == kImageChannels && image.size(1) == kImageSize && image.size(2) == kImageSize,
+      "a cloth image tensor of " << image.sizes() << ", expected 6 x 256 x 256");
   const torch::Tensor c = image.to(torch::kCPU, torch::kFloat32).contiguous();
   const std::int64_t pixels = kImageSize * kImageSize;
   patches::ClothImage decoded = blank_;

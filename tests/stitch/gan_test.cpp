@@ -60,8 +60,8 @@ TEST(Gan, SummaryHasPix2pixShapesAndSizesAtTwoWidths) {
   const std::int64_t c[8] = {8, 16, 32, 64, 64, 64, 64, 64};
   EXPECT_EQ(eighth["generator"]["parameters"], generatorParameters(c));
   EXPECT_EQ(eighth["generator"]["layers"][0]["output"], (std::vector<std::int64_t>{8, 128, 128}));
-  EXPECT_EQ(eighth["discriminator"]["parameters"], 12 * 8 * 16 + 8 + 8 * 16 * 16 + 32 + 16 * 32 * 16 + 64 +
-                                                       32 * 64 * 16 + 128 + 64 * 16 + 1);
+  EXPECT_EQ(eighth["discriminator"]["parameters"],
+            12 * 8 * 16 + 8 + 8 * 16 * 16 + 32 + 16 * 32 * 16 + 64 + 32 * 64 * 16 + 128 + 64 * 16 + 1);
   const std::int64_t full[8] = {64, 128, 256, 512, 512, 512, 512, 512};
   EXPECT_EQ(generatorParameters(full), kGeneratorParametersAtWidth1);  // the formula above is pix2pix's count
 }
@@ -72,7 +72,8 @@ struct Images {
 };
 Images smoothImages(const ps::ClothTensors& images) {
   const Eigen::MatrixXf a = pixelcloth::testing::smoothOffsets(pixelcloth::testing::tshirt());
-  const Eigen::MatrixXf b = 0.5 * a, c = a + Eigen::MatrixXf::Constant(a.rows(), 3, 0.01f), d = b.array().sin().matrix();
+  const Eigen::MatrixXf b = 0.5 * a, c = a + Eigen::MatrixXf::Constant(a.rows(), 3, 0.01f),
+                        d = b.array().sin().matrix();
   return {images.images({&a, &b}), images.images({&c, &d})};
 }
 
@@ -90,7 +91,6 @@ bool same(const std::vector<torch::Tensor>& a, const std::vector<torch::Tensor>&
 }
 
 TEST(Gan, AnUntrainedGeneratorIsTheIdentityAndOneStepTrainsBothNetworks) {
-  torch::set_num_threads(2);
   const ps::ClothTensors images(pixelcloth::testing::tshirt(), "test");
   const Images data = smoothImages(images);
   ps::GanNetworks networks(0.0625, 2e-4, 7);
@@ -103,7 +103,7 @@ TEST(Gan, AnUntrainedGeneratorIsTheIdentityAndOneStepTrainsBothNetworks) {
                                    discriminator = copies(*networks.discriminator);
   const ps::GanStepLosses losses = networks.step(data.x, data.y, images.mask(), 100);
   EXPECT_TRUE(std::isfinite(losses.l1) && std::isfinite(losses.adversarial) && std::isfinite(losses.discriminator));
-  EXPECT_GT(losses.l1, 0.001);  // the targets are centimetres away on the mask
+  EXPECT_GT(losses.l1, 0.001);                            // the targets are centimetres away on the mask
   EXPECT_NEAR(losses.discriminator, std::log(2.0), 0.1);  // an untrained discriminator guesses
   EXPECT_FALSE(same(copies(*networks.generator), generator));
   EXPECT_FALSE(same(copies(*networks.discriminator), discriminator));
@@ -211,7 +211,6 @@ struct Trained {
 
 const Trained& trained() {
   static const Trained t = [] {
-    torch::set_num_threads(2);
     Trained t;
     t.dataset = shirtDataset();
     const fs::path root = t.dataset.parent_path() / ("gan-models." + std::to_string(::getpid()));

@@ -45,9 +45,10 @@ struct GanOptions {
 /// One epoch of the blender.
 struct GanEpoch {
   int epoch = 0;                         ///< from 1
-  double generatorL1 = 0;                ///< mean masked L1 of the generator's output on the train split, metres
-  double generatorAdversarial = 0;       ///< mean adversarial term of the generator
-  double discriminator = 0;              ///< mean discriminator loss
+  double generatorL1 = 0;                ///< masked L1 of the generator's output, metres (before its weight), mean
+                                         ///< over the epoch's steps (training mode: dropout on)
+  double generatorAdversarial = 0;       ///< the generator's BCE against "real", mean over the steps
+  double discriminator = 0;              ///< the discriminator's loss (half its BCE on real plus on blended), mean
   double regularisationErrorCm = 0;      ///< mean per-vertex error of the blended garments on the regularisation
                                          ///< split (NaN when it is empty)
   double stitchedErrorCm = 0;            ///< the same for the stitched input, before blending

@@ -1,5 +1,5 @@
 // pixelcloth train: a decoder or baseline learned from a dataset (the whole garment, the 28 patches, the necktie, or
-// the fully connected baselines), in plain or residual mode.
+// the fully connected baselines), in plain or residual mode; or the GAN blender of a trained patch model.
 #include "pixelcloth/learn/train.h"
 
 #include <iomanip>
@@ -7,16 +7,20 @@
 #include <memory>
 #include <sstream>
 
+#include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/stitch/gan.h"
+#include "prediction_inputs.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
 
 namespace {
 struct TrainArgs {
-  std::string dataset, out, model = "whole", patches = "all", space, residual;
+  std::string dataset, out, model = "whole", patches = "all", space, residual, patchModel;
   learn::TrainOptions options;
+  stitch::GanOptions gan;
 };
 
 /// "all" -> {}; "3,7,12" -> {3, 7, 12}.
@@ -41,8 +45,40 @@ std::vector<int> parsePatchList(const std::string& text) {
   return ids;
 }
 
-void runTrain(TrainArgs args) {
+/// --model gan: the blender of the patch model in --patch-model, on --dataset loaded as that model sees it. The shared
+/// options apply where given (count > 0), else the blender's defaults; the decoders' own are refused.
+void runTrainGan(TrainArgs args, const CLI::App& verb) {
+  PIXELCLOTH_CHECK(!args.patchModel.empty(),
+                   "train --model gan: give the patch model to blend with --patch-model DIR (pixelcloth train --model "
+                   "patch --out DIR)");
+  for (const char* option : {"--patches", "--components", "--space", "--residual", "--loss", "--normal-weight",
+                             "--edge-weight", "--networks-at-once"})
+    PIXELCLOTH_CHECK(verb.count(option) == 0, "train --model gan: " << option << " is not an option of the blender "
+                                                                    << "(it takes the space and base of --patch-model)");
+  stitch::GanOptions& gan = args.gan;
+  if (verb.count("--width") > 0) gan.width = args.options.model.width;
+  if (verb.count("--epochs") > 0) gan.epochs = args.options.epochs;
+  if (verb.count("--batch") > 0) gan.batch = args.options.batch;
+  if (verb.count("--lr") > 0) gan.learningRate = args.options.learningRate;
+  gan.seed = args.options.seed;
+  gan.threads = args.options.threads;
+  gan.quiet = args.options.quiet;
+  gan.validate();
+  core::checkOutputFolder(args.out);
+  const PredictionInputs inputs = datasetPredictionInputs(args.patchModel, args.dataset, {}, learn::Engine::OneDnn);
+  const stitch::GanReport report = stitch::trainGan(*inputs.model, inputs.data, gan, args.out);
+  const stitch::GanEpoch& best = report.epochs[report.bestEpoch - 1];
+  std::cout << std::fixed << std::setprecision(3) << "gan: epoch " << best.epoch << " of " << report.epochs.size()
+            << ": regularisation " << best.regularisationErrorCm << " cm blended, " << best.stitchedErrorCm
+            << " cm stitched -> " << report.folder.string() << " in " << std::setprecision(1) << report.seconds
+            << " s\n";
+}
+
+void runTrain(TrainArgs args, const CLI::App& verb) {
   if (args.options.quiet) core::setLogLevel(core::LogLevel::Warning);
+  if (args.model == "gan") return runTrainGan(std::move(args), verb);
+  PIXELCLOTH_CHECK(args.patchModel.empty() && verb.count("--l1-weight") == 0,
+                   "train --model " << args.model << ": --patch-model and --l1-weight are options of --model gan");
   args.options.model.architecture = learn::architectureFromName(args.model, "--model");
   args.options.patches = parsePatchList(args.patches);
   if (!args.space.empty()) args.options.space = learn::offsetSpaceFromName(args.space, "--space");
@@ -61,18 +97,32 @@ void runTrain(TrainArgs args) {
 
 void registerTrain(CLI::App& app) {
   auto args = std::make_shared<TrainArgs>();
+  const stitch::GanOptions gan;  // the blender's defaults, for the help of the options it shares
+  auto ganDefault = [](auto value) {
+    std::ostringstream text;
+    text << " (gan: " << value << ")";
+    return text.str();
+  };
   CLI::App* verb = app.add_subcommand(
-      "train", "Train a decoder or baseline on a dataset; keep the best epoch by regularisation error; resumable");
+      "train",
+      "Train a decoder or baseline on a dataset, or the GAN blender of a patch model; keep the best epoch by "
+      "regularisation error; the decoders' runs are resumable");
   verb->add_option("--dataset", args->dataset, "Dataset folder (pixelcloth generate or dataset import)")->required();
   verb->add_option("--model", args->model,
                    "Network: whole (T-shirt, 6 x 256 x 256), patch (one per patch, 3 x 160 x 160 crops), necktie "
-                   "(3 x 256 x 64), fc or fc-pca (2 x 256 ReLU to per-vertex values or 128 PCA coefficients)")
-      ->check(CLI::IsMember({"whole", "patch", "necktie", "fc", "fc-pca"}))
+                   "(3 x 256 x 64), fc or fc-pca (2 x 256 ReLU to per-vertex values or 128 PCA coefficients), gan (the "
+                   "U-Net blender of --patch-model's stitched predictions, 6 x 256 x 256)")
+      ->check(CLI::IsMember({"whole", "patch", "necktie", "fc", "fc-pca", "gan"}))
       ->capture_default_str();
   verb->add_option("--patches", args->patches,
                    "Patch models: all, or ids such as 3,7 (one job of an array; runs fill one --out folder)")
       ->capture_default_str();
-  verb->add_option("--width", args->options.model.width, "Multiplier of every channel count, (0, 4]")
+  verb->add_option("--width", args->options.model.width, "Multiplier of every channel count, (0, 4]" + ganDefault(gan.width))
+      ->capture_default_str();
+  verb->add_option("--patch-model", args->patchModel,
+                   "gan: the trained patch model (all 28 patches) whose stitched predictions of --dataset it blends");
+  verb->add_option("--l1-weight", args->gan.l1Weight, "gan: weight of the masked L1 term (metres) against the "
+                                                      "adversarial one")
       ->capture_default_str();
   verb->add_option("--components", args->options.model.pcaComponents, "fc-pca: PCA components of the train split")
       ->capture_default_str();
@@ -90,9 +140,10 @@ void registerTrain(CLI::App& app) {
                    "Weight of the normal loss; default 0.01 (T-shirt), 0.1 (necktie)");
   verb->add_option("--edge-weight", args->options.edgeWeight,
                    "Weight of the edge-length loss; default 0.1 (necktie), 0 (T-shirt)");
-  verb->add_option("--epochs", args->options.epochs, "Passes over the train split")->capture_default_str();
-  verb->add_option("--batch", args->options.batch, "Samples per Adam step")->capture_default_str();
-  verb->add_option("--lr", args->options.learningRate, "Adam's learning rate")->capture_default_str();
+  verb->add_option("--epochs", args->options.epochs, "Passes over the train split" + ganDefault(gan.epochs))->capture_default_str();
+  verb->add_option("--batch", args->options.batch, "Samples per Adam step" + ganDefault(gan.batch))->capture_default_str();
+  verb->add_option("--lr", args->options.learningRate, "Adam's learning rate" + ganDefault(gan.learningRate))
+      ->capture_default_str();
   verb->add_option("--seed", args->options.seed, "Seeds the weights and the order of the samples")
       ->capture_default_str();
   verb->add_option("--threads", args->options.threads, "LibTorch threads (0: one per core)")->capture_default_str();
@@ -101,10 +152,11 @@ void registerTrain(CLI::App& app) {
                    "after another on all threads)")
       ->capture_default_str();
   verb->add_option("--out", args->out,
-                   "Model folder: model.pt (best epoch), model.json, log.csv, checkpoint.pt (patch_NN/ per patch)")
+                   "Model folder: model.pt (best epoch), model.json, log.csv, checkpoint.pt (patch_NN/ per patch; gan: "
+                   "no checkpoint)")
       ->required();
   verb->add_flag("--quiet", args->options.quiet, "No progress on stderr");
-  verb->callback([args] { runTrain(*args); });
+  verb->callback([args, verb] { runTrain(*args, *verb); });
 }
 
 }  // namespace pixelcloth::apps

@@ -12,6 +12,8 @@
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/viz/pictures.h"
 #include "pixelcloth/viz/previews.h"
+#include "pixelcloth/viz/seam_report.h"
+#include "pixelcloth/data/dataset.h"
 #include "prediction_inputs.h"
 #include "verbs.h"
 
@@ -29,6 +31,37 @@ std::string figure(const nlohmann::json& value, int digits = 3) {
   std::ostringstream out;
   out << std::fixed << std::setprecision(digits) << value.get<double>();
   return out.str();
+}
+
+/// report.md and its pictures: the examples are the split's first sample as the first mode and the best pca:K mode
+/// (or the second mode) stitch it.
+void writeReport(const EvaluateArgs& args, const PredictionInputs& inputs, const std::vector<stitch::Stitcher>& stitchers,
+                 const std::vector<stitch::Evaluation>& evaluations) {
+  const learn::TrainingData& data = inputs.data;
+  viz::SeamReportInputs report;
+  std::ostringstream title, command;
+  title << args.model << " on " << args.dataset << ", " << args.split << " split";
+  command << "pixelcloth evaluate --model " << args.model << " --dataset " << args.dataset << " --split " << args.split
+          << " --stitch " << args.stitch.modes << " --out " << args.out;
+  report.title = title.str();
+  report.command = command.str();
+  report.garment = data.garment;
+  report.evaluations = evaluations;
+  const int row = data.split(args.split).front();
+  const int best = viz::bestPcaMode(evaluations);
+  std::vector<size_t> shown = {0};
+  if (best > 0) shown.push_back(static_cast<size_t>(best));
+  else if (stitchers.size() > 1) shown.push_back(1);
+  const body::Body body = data::loadDatasetBody(data.folder);
+  body::Body posed = body;
+  posed.mesh.V = body.posedVertices(body::Pose::fromLeading(data.inputs.row(row).head(data.poseSize).transpose()));
+  for (size_t m : shown) {
+    const stitch::RowPredictions predicted = stitch::predictRows(*inputs.model, data, {row}, &stitchers[m]);
+    report.examples.push_back({"sample " + std::to_string(data.info.settings.first() + row) + ", " +
+                                   stitchers[m].mode().name(),
+                               predicted.positions.front(), data.truth[row].cast<double>(), posed});
+  }
+  viz::writeSeamReport(args.out, report);
 }
 
 void runEvaluate(const EvaluateArgs& args) {
@@ -67,6 +100,7 @@ void runEvaluate(const EvaluateArgs& args) {
                                     viz::renderPatternValues(inputs.data.garment, evaluation.vertexErrorCm, high,
                                                              stretched.str(), 384, true)},
                                    1));
+  writeReport(args, inputs, stitchers, evaluations);
   for (const stitch::Evaluation& e : evaluations) {
     const nlohmann::json& m = e.metrics;
     std::cout << std::fixed << std::setprecision(3) << args.split << ", " << m["stitch"].get<std::string>() << ": "
@@ -80,7 +114,7 @@ void runEvaluate(const EvaluateArgs& args) {
       std::cout << " (marker reconstruction alone: " << m["base_vertex_error_cm"].get<double>() << " cm)";
     std::cout << "\n";
   }
-  std::cout << "-> " << args.out << "/{metrics.json, error_maps.png}\n";
+  std::cout << "-> " << args.out << "/{metrics.json, error_maps.png, report.md}\n";
 }
 }  // namespace
 
@@ -95,7 +129,10 @@ void registerEvaluate(CLI::App& app) {
       ->capture_default_str();
   verb->add_option("--base", args->base,
                    "Residual models: the dataset's base folder (default: the one the model was trained with)");
-  verb->add_option("--out", args->out, "Output folder: metrics.json, error_maps.png")->required();
+  verb->add_option("--out", args->out,
+                   "Output folder: metrics.json, error_maps.png, report.md (stitch modes, seams per curve, the PCA "
+                   "sweep, error maps, the worst seams) and its pictures")
+      ->required();
   addEngineOption(*verb, args->engine);
   addStitchOptions(*verb, args->stitch, true);
   verb->callback([args] { runEvaluate(*args); });

@@ -81,6 +81,12 @@ TEST_F(StitchCli, EvaluateMeasuresEveryModeOnTheSamePredictions) {
   // Fewer components change the garment more.
   const double mean = metrics["stitch_modes"][0]["vertex_error_cm"].get<double>();
   EXPECT_NE(metrics["stitch_modes"][2]["vertex_error_cm"].get<double>(), mean);
+  // The report: a row per mode, the sweep of k, error maps and the worst seams as pictures.
+  const std::string report = readFile(out / "report.md");
+  for (const char* row : {"| mean |", "| feather |", "| pca:4 |", "| pca:6 |", "| side_left | seam |", "pca_sweep.png"})
+    EXPECT_NE(report.find(row), std::string::npos) << row << "\n" << report;
+  for (const char* picture : {"pca_sweep.png", "error_maps_by_mode.png", "worst_seams.png", "error_maps.png"})
+    EXPECT_GT(fs::file_size(out / picture), 1000u) << picture;
   // The filter was fitted beside the model and is reused.
   EXPECT_TRUE(fs::exists(shared().model / "pca" / "pca.json"));
   const nlohmann::json pca = nlohmann::json::parse(readFile(shared().model / "pca" / "pca.json"));

@@ -34,6 +34,7 @@ void runDemo(const DemoArgs& args) {
   viz::demoPoseSampling(report, body, demo);
   viz::demoNetworks(report);
   viz::demoLearning(report, body, demo);
+  viz::demoSeams(report, body);
   report.write();
 }
 }  // namespace

@@ -34,7 +34,7 @@ void runDemo(const DemoArgs& args) {
   viz::demoPoseSampling(report, body, demo);
   viz::demoNetworks(report);
   viz::demoLearning(report, body, demo);
-  viz::demoSeams(report, body);
+  viz::demoSeams(report, body, demo);
   report.write();
 }
 }  // namespace

@@ -197,6 +197,7 @@ void writeSeamReport(const fs::path& folder, const SeamReportInputs& inputs) {
   if (first["base_vertex_error_cm"].is_number())
     md << "\nThe marker reconstruction alone (the residual model's base): " << figure(first["base_vertex_error_cm"])
        << " cm.\n";
+  if (!inputs.extra.empty()) md << "\n" << inputs.extra << "\n";
   int sweepModes = 0;
   for (const stitch::Evaluation& e : evaluations) sweepModes += pcaComponents(e) > 0;
   if (sweepModes >= 2) {

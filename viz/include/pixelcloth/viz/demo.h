@@ -74,7 +74,8 @@ void demoNetworks(Report& report);
 void demoLearning(Report& report, const body::Body& body, const DemoOptions& demo);
 
 /// The patch decoders of demoLearning stitched every way (mean, feather, the PCA filter at the k the regularisation
-/// split chooses, a GAN blender trained here) and measured on the test split: seams/report.md and its pictures.
-void demoSeams(Report& report, const body::Body& body);
+/// split chooses, a GAN blender trained here) and measured on the test split, with the paper's tables (losses, whole
+/// against patches, the baselines in three spaces) trained here: seams/report.md and its pictures.
+void demoSeams(Report& report, const body::Body& body, const DemoOptions& demo);
 
 }  // namespace pixelcloth::viz

@@ -30,6 +30,7 @@ struct SeamReportInputs {
   garment::Garment garment;
   std::vector<stitch::Evaluation> evaluations;  ///< one per stitch mode, the plain mean first when measured
   std::vector<SeamExample> examples;
+  std::string extra;  ///< Markdown appended after the stitch-mode table (e.g. the demo's tables in the paper's form)
 };
 
 /// Mean vertex error and normal jump against k for the pca:K modes among `evaluations` (at least two), beside the

@@ -25,13 +25,6 @@ struct EvaluateArgs {
   StitchArgs stitch;
 };
 
-/// "0.123" or "-" for a null.
-std::string figure(const nlohmann::json& value, int digits = 3) {
-  if (!value.is_number()) return "-";
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(digits) << value.get<double>();
-  return out.str();
-}
 
 /// report.md and its pictures: the examples are the split's first sample as the first mode and the best pca:K mode
 /// (or the second mode) stitch it.
@@ -106,10 +99,10 @@ void runEvaluate(const EvaluateArgs& args) {
     std::cout << std::fixed << std::setprecision(3) << args.split << ", " << m["stitch"].get<std::string>() << ": "
               << m["samples"].get<int>() << " samples, vertex error " << m["vertex_error_cm"].get<double>()
               << " cm, normal cosine " << m["normal_cosine"].get<double>() << "; seams: gap "
-              << figure(m["seams"]["gap_cm"]["mean"]) << " cm (max " << figure(m["seams"]["gap_cm"]["max"])
-              << "), normal jump " << figure(m["seams"]["normal_jump_deg"], 2) << " deg, error near seams "
-              << figure(m["seams"]["near_seam_error_cm"]) << " cm, interior "
-              << figure(m["seams"]["interior_error_cm"]) << " cm";
+              << viz::figureText(m["seams"]["gap_cm"]["mean"]) << " cm (max " << viz::figureText(m["seams"]["gap_cm"]["max"])
+              << "), normal jump " << viz::figureText(m["seams"]["normal_jump_deg"], 2) << " deg, error near seams "
+              << viz::figureText(m["seams"]["near_seam_error_cm"]) << " cm, interior "
+              << viz::figureText(m["seams"]["interior_error_cm"]) << " cm";
     if (inputs.model->residual())
       std::cout << " (marker reconstruction alone: " << m["base_vertex_error_cm"].get<double>() << " cm)";
     std::cout << "\n";

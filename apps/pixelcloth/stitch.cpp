@@ -15,6 +15,7 @@
 #include "pixelcloth/garment/embedding.h"
 #include "pixelcloth/learn/spaces.h"
 #include "pixelcloth/patches/cloth_image.h"
+#include "pixelcloth/stitch/evaluate.h"
 #include "pixelcloth/stitch/seams.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
@@ -109,15 +110,8 @@ void runStitch(const StitchVerbArgs& args) {
   const Eigen::MatrixX3d positions = learn::positionsFromValues(learn::OffsetSpace::Local, frames, values);
 
   // Seams: the crops' gap always; with a sample's ground truth, the normal jump and the errors too.
-  std::vector<Eigen::MatrixX3d> separate;
-  for (const learn::NetworkPrediction& p : crops) {
-    Eigen::MatrixX3f full = Eigen::MatrixX3f::Zero(V, 3);
-    for (size_t i = 0; i < p.vertices.size(); ++i) full.row(p.vertices[i]) = p.values.block<1, 3>(0, 3 * i);
-    const Eigen::MatrixX3d all = learn::positionsFromValues(learn::OffsetSpace::Local, frames, full);
-    Eigen::MatrixX3d own(static_cast<Eigen::Index>(p.vertices.size()), 3);
-    for (size_t i = 0; i < p.vertices.size(); ++i) own.row(static_cast<Eigen::Index>(i)) = all.row(p.vertices[i]);
-    separate.push_back(std::move(own));
-  }
+  const std::vector<Eigen::MatrixX3d> separate =
+      stitch::separatePositions(crops, learn::OffsetSpace::Local, frames, nullptr, 0);
   std::vector<stitch::PredictedPositions> parts;
   for (size_t k = 0; k < crops.size(); ++k) parts.push_back({&crops[k].vertices, separate[k]});
   const stitch::SeamLayout layout(garment);

@@ -72,24 +72,6 @@ void stitchChunk(const Stitcher* stitcher, const std::vector<learn::NetworkPredi
   }
 }
 
-/// Each network's own positions of its vertices for row `k` of the chunk (base added), before blending.
-std::vector<Eigen::MatrixX3d> separatePositions(const std::vector<learn::NetworkPrediction>& predictions,
-                                                const learn::TrainingData& data, int row, Eigen::Index k) {
-  const int V = data.garment.mesh.numVertices();
-  std::vector<Eigen::MatrixX3d> out;
-  for (const learn::NetworkPrediction& p : predictions) {
-    Eigen::MatrixX3f values = Eigen::MatrixX3f::Zero(V, 3);
-    if (data.residual()) values = data.base[row];
-    for (size_t i = 0; i < p.vertices.size(); ++i)
-      values.row(p.vertices[i]) += p.values.block<1, 3>(k, 3 * static_cast<Eigen::Index>(i));
-    const Eigen::MatrixX3d all = learn::positionsFromValues(data.space, data.frames[row], values);
-    Eigen::MatrixX3d own(static_cast<Eigen::Index>(p.vertices.size()), 3);
-    for (size_t i = 0; i < p.vertices.size(); ++i) own.row(static_cast<Eigen::Index>(i)) = all.row(p.vertices[i]);
-    out.push_back(std::move(own));
-  }
-  return out;
-}
-
 /// Running sums of one stitch mode's errors over a split.
 struct Tally {
   explicit Tally(const SeamLayout& layout, int V) : seams(layout), vertexErrorCm(Eigen::VectorXd::Zero(V)) {}
@@ -99,6 +81,25 @@ struct Tally {
 };
 
 }  // namespace
+
+std::vector<Eigen::MatrixX3d> separatePositions(const std::vector<learn::NetworkPrediction>& predictions,
+                                                learn::OffsetSpace space, const garment::EmbeddedFrames& frames,
+                                                const Eigen::MatrixXf* base, Eigen::Index k) {
+  const Eigen::Index V = frames.origin.rows();
+  std::vector<Eigen::MatrixX3d> out;
+  for (const learn::NetworkPrediction& p : predictions) {
+    PIXELCLOTH_CHECK(k >= 0 && k < p.values.rows(), "separate positions: row " << k << " of " << p.values.rows());
+    Eigen::MatrixX3f values = Eigen::MatrixX3f::Zero(V, 3);
+    if (base) values = *base;
+    for (size_t i = 0; i < p.vertices.size(); ++i)
+      values.row(p.vertices[i]) += p.values.block<1, 3>(k, 3 * static_cast<Eigen::Index>(i));
+    const Eigen::MatrixX3d all = learn::positionsFromValues(space, frames, values);
+    Eigen::MatrixX3d own(static_cast<Eigen::Index>(p.vertices.size()), 3);
+    for (size_t i = 0; i < p.vertices.size(); ++i) own.row(static_cast<Eigen::Index>(i)) = all.row(p.vertices[i]);
+    out.push_back(std::move(own));
+  }
+  return out;
+}
 
 RowPredictions predictRows(const learn::TrainedModel& model, const learn::TrainingData& data,
                            const std::vector<int>& rows, const Stitcher* stitcher) {
@@ -137,7 +138,9 @@ std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::
     std::vector<std::vector<Eigen::MatrixX3d>> separate;
     if (model.architecture() == learn::Architecture::Patch)
       for (size_t k = 0; k < chunk.size(); ++k)
-        separate.push_back(separatePositions(predictions, data, chunk[k], static_cast<Eigen::Index>(k)));
+        separate.push_back(separatePositions(predictions, data.space, data.frames[chunk[k]],
+                                             data.residual() ? &data.base[chunk[k]] : nullptr,
+                                             static_cast<Eigen::Index>(k)));
     for (size_t m = 0; m < modes.size(); ++m) {
       RowPredictions predicted;
       stitchChunk(modes[m], predictions, data, chunk, predicted);

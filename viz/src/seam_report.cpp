@@ -22,14 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// "1.234" or "-" for a null.
-std::string figure(const nlohmann::json& value, int digits = 3) {
-  if (!value.is_number()) return "-";
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(digits) << value.get<double>();
-  return out.str();
-}
-
 /// The k of a "pca:K" mode; 0 for other modes.
 int pcaComponents(const stitch::Evaluation& e) {
   const std::string mode = e.metrics.value("stitch", "");
@@ -79,6 +71,13 @@ void sweepPanel(core::RgbImage& image, int left, int right, int top, int bottom,
 }
 
 }  // namespace
+
+std::string figureText(const nlohmann::json& value, int digits) {
+  if (!value.is_number()) return "-";
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(digits) << value.get<double>();
+  return out.str();
+}
 
 int bestPcaMode(const std::vector<stitch::Evaluation>& evaluations) {
   int best = -1;
@@ -189,13 +188,13 @@ void writeSeamReport(const fs::path& folder, const SeamReportInputs& inputs) {
   for (const stitch::Evaluation& e : evaluations) {
     const nlohmann::json& m = e.metrics;
     const nlohmann::json& s = m["seams"];
-    md << "| " << m["stitch"].get<std::string>() << " | " << figure(m["vertex_error_cm"]) << " | "
-       << figure(m["normal_cosine_distance"], 4) << " | " << figure(s["gap_cm"]["mean"]) << " | "
-       << figure(s["gap_cm"]["max"]) << " | " << figure(s["normal_jump_deg"], 2) << " | "
-       << figure(s["near_seam_error_cm"]) << " | " << figure(s["interior_error_cm"]) << " |\n";
+    md << "| " << m["stitch"].get<std::string>() << " | " << figureText(m["vertex_error_cm"]) << " | "
+       << figureText(m["normal_cosine_distance"], 4) << " | " << figureText(s["gap_cm"]["mean"]) << " | "
+       << figureText(s["gap_cm"]["max"]) << " | " << figureText(s["normal_jump_deg"], 2) << " | "
+       << figureText(s["near_seam_error_cm"]) << " | " << figureText(s["interior_error_cm"]) << " |\n";
   }
   if (first["base_vertex_error_cm"].is_number())
-    md << "\nThe marker reconstruction alone (the residual model's base): " << figure(first["base_vertex_error_cm"])
+    md << "\nThe marker reconstruction alone (the residual model's base): " << figureText(first["base_vertex_error_cm"])
        << " cm.\n";
   if (!inputs.extra.empty()) md << "\n" << inputs.extra << "\n";
   int sweepModes = 0;
@@ -206,13 +205,13 @@ void writeSeamReport(const fs::path& folder, const SeamReportInputs& inputs) {
     if (best >= 0 && mean) {
       const nlohmann::json& b = evaluations[best].metrics;
       const double error = b["vertex_error_cm"].get<double>() / mean->metrics["vertex_error_cm"].get<double>() - 1;
-      md << "Lowest vertex error at " << b["stitch"].get<std::string>() << ": " << figure(b["vertex_error_cm"])
+      md << "Lowest vertex error at " << b["stitch"].get<std::string>() << ": " << figureText(b["vertex_error_cm"])
          << " cm (" << std::showpos << std::fixed << std::setprecision(1) << 100 * error << std::noshowpos
          << "% against the plain mean)";
       if (b["seams"]["normal_jump_deg"].is_number() && mean->metrics["seams"]["normal_jump_deg"].is_number()) {
         const double jump =
             b["seams"]["normal_jump_deg"].get<double>() / mean->metrics["seams"]["normal_jump_deg"].get<double>() - 1;
-        md << ", normal jump " << figure(b["seams"]["normal_jump_deg"], 2) << " deg (" << std::showpos << std::fixed
+        md << ", normal jump " << figureText(b["seams"]["normal_jump_deg"], 2) << " deg (" << std::showpos << std::fixed
            << std::setprecision(1) << 100 * jump << std::noshowpos << "%)";
       }
       md << ". Choose k on the regularisation split and report the test split at that k.\n";
@@ -231,11 +230,11 @@ void writeSeamReport(const fs::path& folder, const SeamReportInputs& inputs) {
   for (size_t c = 0; c < curves.size(); ++c) {
     const nlohmann::json& a = curves[c];
     md << "| " << a["name"].get<std::string>() << " | " << a["kind"].get<std::string>() << " | " << a["vertices"]
-       << " | " << a["shared_vertices"] << " | " << figure(a["gap_cm"]["mean"]) << " | " << figure(a["gap_cm"]["max"])
-       << " | " << figure(a["normal_jump_deg"], 2);
-    if (right) md << " | " << figure(right->metrics["seams"]["curves"][c]["normal_jump_deg"], 2);
-    md << " | " << figure(a["near_seam_error_cm"]);
-    if (right) md << " | " << figure(right->metrics["seams"]["curves"][c]["near_seam_error_cm"]);
+       << " | " << a["shared_vertices"] << " | " << figureText(a["gap_cm"]["mean"]) << " | " << figureText(a["gap_cm"]["max"])
+       << " | " << figureText(a["normal_jump_deg"], 2);
+    if (right) md << " | " << figureText(right->metrics["seams"]["curves"][c]["normal_jump_deg"], 2);
+    md << " | " << figureText(a["near_seam_error_cm"]);
+    if (right) md << " | " << figureText(right->metrics["seams"]["curves"][c]["near_seam_error_cm"]);
     md << " |\n";
   }
   // Error maps, both layouts, on one scale.

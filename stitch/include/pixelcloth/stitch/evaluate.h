@@ -28,6 +28,13 @@ struct RowPredictions {
 RowPredictions predictRows(const learn::TrainedModel& model, const learn::TrainingData& data,
                            const std::vector<int>& rows, const Stitcher* stitcher = nullptr);
 
+/// Each network's own positions of the vertices it covers, before blending, for batch row `k` of `predictions`: its
+/// values (plus `base`, #V x 3 in `space`, when not null) through the posed `frames`. One matrix per prediction, its
+/// vertices' order: what SeamMetrics measures the gaps on.
+std::vector<Eigen::MatrixX3d> separatePositions(const std::vector<learn::NetworkPrediction>& predictions,
+                                                learn::OffsetSpace space, const garment::EmbeddedFrames& frames,
+                                                const Eigen::MatrixXf* base, Eigen::Index k);
+
 /// What evaluate() measured for one stitch mode.
 struct Evaluation {
   /// {"split", "samples", "stitch" (the mode's name), "vertex_error_cm", "max_vertex_error_cm", "normal_cosine" (mean

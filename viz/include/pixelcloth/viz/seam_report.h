@@ -45,6 +45,9 @@ core::RgbImage renderWorstSeams(const garment::Garment& garment, const SeamExamp
 /// The pca:K mode with the lowest vertex error among `evaluations`; -1 when there is none.
 int bestPcaMode(const std::vector<stitch::Evaluation>& evaluations);
 
+/// A JSON number as text with `digits` decimals, "-" for null (a figure that does not apply): for tables and logs.
+std::string figureText(const nlohmann::json& value, int digits = 3);
+
 /// Writes report.md, pca_sweep.png (with two or more pca modes), error_maps_by_mode.png and worst_seams.png (with
 /// examples) into `folder` (created), each atomically.
 void writeSeamReport(const std::filesystem::path& folder, const SeamReportInputs& inputs);

@@ -16,6 +16,7 @@
 #include "pixelcloth/stitch/evaluate.h"
 #include "support/body_fixtures.h"
 #include "support/fixtures.h"
+#include "support/synthetic_dataset.h"
 #include "support/test_util.h"
 
 namespace {
@@ -163,43 +164,6 @@ TEST(Gan, OptionsOutOfRangeAreRefused) {
   refused([](ps::GanOptions& o) { o.threads = -2; }, "threads");
 }
 
-/// 6 T-shirt samples on the coarse mannequin (5 train, 1 regularisation): small poses, the rest offsets plus each
-/// sample's own bulge (as tests/learn/train_test.cpp makes them).
-fs::path shirtDataset() {
-  const fs::path dir = fs::temp_directory_path() / "pixelcloth-tests" / ("gan-shirts." + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  const pb::Body& body = pixelcloth::testing::coarseMannequin();
-  const pg::Garment garment = pg::makeGarment("tshirt", "test");
-  const Eigen::MatrixX3d rest = garment.mesh.V;
-  Eigen::MatrixX3d u = Eigen::MatrixX3d::Zero(rest.rows(), 3);
-  u.col(0).setOnes();
-  const pg::Embedding embedding = pg::embedClosest(body.mesh.V, body.mesh.F, rest, u);
-  const Eigen::MatrixX3d restOffsets =
-      pg::offsetsFromPositions(pg::embeddedFrames(body.mesh.V, body.mesh.F, embedding), rest);
-  pd::DatasetSettings settings;
-  settings.garment = "tshirt";
-  settings.poseSize = pg::poseSizeOf("tshirt");
-  settings.vertexCount = garment.mesh.numVertices();
-  settings.seed = 5;
-  settings.count = 6;
-  settings.body = {{"kind", "mannequin"}, {"edge_length", 0.02}};
-  pd::DatasetWriter writer(dir, settings, body, garment, rest, embedding);
-  for (int i : writer.pending()) {
-    const Eigen::VectorXf vector = pb::randomPose(40 + i, 0.2).toVector().head(settings.poseSize);
-    Eigen::MatrixX3d offsets = restOffsets;
-    for (int v = 0; v < offsets.rows(); ++v) offsets(v, 2) += 0.01 * std::sin(8 * rest(v, 1) + i);
-    const pg::EmbeddedFrames frames =
-        pg::embeddedFrames(body.posedVertices(pb::Pose::fromLeading(vector)), body.mesh.F, embedding);
-    pd::Sample sample;
-    sample.pose = vector;
-    sample.positions = pg::positionsFromOffsets(frames, offsets).cast<float>();
-    sample.offsets = pg::offsetsFromPositions(frames, sample.positions.cast<double>()).cast<float>();
-    writer.add(i, sample);
-  }
-  writer.finish();
-  return dir;
-}
-
 /// The dataset, its 28 tiny patch decoders (one epoch) and a blender trained on them (two epochs), made once.
 struct Trained {
   fs::path dataset, patches, blender;
@@ -212,7 +176,7 @@ struct Trained {
 const Trained& trained() {
   static const Trained t = [] {
     Trained t;
-    t.dataset = shirtDataset();
+    t.dataset = pixelcloth::testing::syntheticDataset("gan", "tshirt", 6);  // 5 train, 1 regularisation
     const fs::path root = t.dataset.parent_path() / ("gan-models." + std::to_string(::getpid()));
     fs::remove_all(root);
     t.patches = root / "patches";

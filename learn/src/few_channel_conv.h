@@ -2,7 +2,9 @@
 
 // The decoders' last layer (learn/-internal): a 3x3 convolution to a few channels (16 -> 3 for a patch, 12 -> 6 for
 // the whole garment at width 1). oneDNN's kernels are written for 16 or more output channels and fall to a gemm or
-// padded path here; this one slides the 3 x C window of a channels-last row along it.
+// padded path here. When every input channel sits in one block of at most 16 (nhwc, or nChw16c of up to 16
+// channels: the decoders at width 1 and below), each pixel's window is nine 16-lane vectors, and the lanes of 16
+// neighbouring pixels are added at once; otherwise it slides the 3 x C window of a channels-last row along it.
 
 #include <cstdint>
 #include <vector>

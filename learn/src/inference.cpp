@@ -246,7 +246,10 @@ struct CompiledNetworks::Impl {
   int workers() const { return static_cast<int>(networks.size()) >= threads ? threads : 1; }
   const Program& program(std::int64_t batch);
   const dnnl::memory& weightsOf(Network& network, int op, int part, const dnnl::memory::desc& desc);
-  void run(const Program& program, Workspace& workspace, Network& network, const float* input, float* output);
+  /// `partsAtOnce`: how many of a transposed convolution's four parts run side by side (1: one after another).
+  void run(const Program& program, Workspace& workspace, Network& network, const float* input, float* output,
+           int partsAtOnce);
+  void execute(const Program& program, Workspace& workspace, Network& network, size_t step, dnnl::stream& stream);
 };
 
 const Program& CompiledNetworks::Impl::program(std::int64_t batch) {
@@ -400,11 +403,14 @@ const Program& CompiledNetworks::Impl::program(std::int64_t batch) {
   std::vector<Workspace>& spaces = workspaces[batch];
   for (int w = 0; w < workers(); ++w) {
     Workspace space;
-    space.scratch.resize(std::max<size_t>(program.scratchpadBytes, 64));
+    // The four parts of a transposed convolution may run at once (run()), each on scratch of its own.
+    const size_t stride = (program.scratchpadBytes + 63) / 64 * 64;
+    space.scratch.resize(std::max<size_t>(4 * stride, 64));
     for (size_t s = 0; s < program.slots.size(); ++s)
       space.slots.push_back(s < 2 ? dnnl::memory(program.slots[s], engine, DNNL_MEMORY_NONE)
                                   : dnnl::memory(program.slots[s], engine));
-    for (const Step& step : program.steps) space.scratchpads.emplace_back(step.scratchpad, engine, space.scratch.data());
+    for (const Step& step : program.steps)
+      space.scratchpads.emplace_back(step.scratchpad, engine, space.scratch.data() + std::max(step.part, 0) * stride);
     spaces.push_back(std::move(space));
   }
   for (Network& network : networks)
@@ -455,7 +461,7 @@ const dnnl::memory& CompiledNetworks::Impl::weightsOf(Network& network, int op, 
 }
 
 void CompiledNetworks::Impl::run(const Program& program, Workspace& space, Network& network, const float* input,
-                                 float* output) {
+                                 float* output, int partsAtOnce) {
   dnnl::stream stream(engine);
   space.slots[0].set_data_handle(const_cast<float*>(input));
   space.slots[1].set_data_handle(output);
@@ -478,16 +484,43 @@ void CompiledNetworks::Impl::run(const Program& program, Workspace& space, Netwo
                             static_cast<float*>(space.slots[step.dst].get_data_handle()));
       continue;
     }
-    std::unordered_map<int, dnnl::memory> args{{DNNL_ARG_SRC, space.slots[step.src]},
-                                               {DNNL_ARG_DST, space.slots[step.dst]},
-                                               {DNNL_ARG_SCRATCHPAD, space.scratchpads[s]}};
-    if (step.op >= 0) {
-      args.insert({DNNL_ARG_WEIGHTS, weightsOf(network, step.op, step.part, step.weights)});
-      args.insert({DNNL_ARG_BIAS, network.bias[step.op]});
+    if (step.part == 0 && partsAtOnce > 1) {
+      // One network on several threads: its transposed convolution's four parts side by side, one thread each,
+      // where each part alone on all threads keeps them less busy (the maps are small or the channels few).
+      PIXELCLOTH_ASSERT(s + 3 < program.steps.size() && program.steps[s + 3].part == 3, "a part without its three others");
+      stream.wait();
+      std::exception_ptr failure;
+#pragma omp parallel for num_threads(partsAtOnce) schedule(static, 1)
+      for (int p = 0; p < 4; ++p) {
+        try {
+          dnnl::stream own(engine);
+          execute(program, space, network, s + p, own);
+          own.wait();
+        } catch (...) {
+#pragma omp critical
+          failure = std::current_exception();
+        }
+      }
+      if (failure) std::rethrow_exception(failure);
+      s += 3;
+      continue;
     }
-    step.primitive.execute(stream, args);
+    execute(program, space, network, s, stream);
   }
   stream.wait();
+}
+
+void CompiledNetworks::Impl::execute(const Program& program, Workspace& space, Network& network, size_t s,
+                                     dnnl::stream& stream) {
+  const Step& step = program.steps[s];
+  std::unordered_map<int, dnnl::memory> args{{DNNL_ARG_SRC, space.slots[step.src]},
+                                             {DNNL_ARG_DST, space.slots[step.dst]},
+                                             {DNNL_ARG_SCRATCHPAD, space.scratchpads[s]}};
+  if (step.op >= 0) {
+    args.insert({DNNL_ARG_WEIGHTS, weightsOf(network, step.op, step.part, step.weights)});
+    args.insert({DNNL_ARG_BIAS, network.bias[step.op]});
+  }
+  step.primitive.execute(stream, args);
 }
 
 CompiledNetworks::CompiledNetworks(const std::vector<const Model*>& models, int threads)
@@ -541,7 +574,7 @@ void CompiledNetworks::forward(const RowsF& inputs, std::vector<RowsF>& outputs)
     const int before = omp_get_max_threads();
     omp_set_num_threads(ompThreads);
     for (int n = w; n < networks; n += workers)
-      impl_->run(program, spaces[w], impl_->networks[n], inputs.data(), outputs[n].data());
+      impl_->run(program, spaces[w], impl_->networks[n], inputs.data(), outputs[n].data(), std::min(ompThreads, 4));
     omp_set_num_threads(before);
   };
   if (workers == 1) {

@@ -66,15 +66,18 @@ TEST(Inference, EqualsLibTorchForEveryArchitectureAndWidth) {
       SCOPED_TRACE(std::string(pl::architectureName(a)) + " width " + std::to_string(width));
       const pl::ModelSpec spec = specOf(a, width);
       const pl::Model model = trainedLike(spec, 3);
-      const pl::CompiledNetworks compiled({&model});
-      for (int batch : {1, 3}) {
-        const pl::RowsF inputs = randomInputs(batch, spec.inputs(), 11 + batch);
-        std::vector<pl::RowsF> outputs;
-        compiled.forward(inputs, outputs);
-        ASSERT_EQ(outputs.size(), 1u);
-        const Eigen::MatrixXf reference = model.forward(inputs);
-        EXPECT_GT(reference.cwiseAbs().maxCoeff(), 1e-3);  // not a trivially zero network
-        EXPECT_LT(relativeError(outputs[0], reference), 1e-5) << "batch " << batch;
+      // One thread: every step in turn; three: a transposed convolution's four parts side by side, unevenly.
+      for (int threads : {1, 3}) {
+        const pl::CompiledNetworks compiled({&model}, threads);
+        for (int batch : {1, 3}) {
+          const pl::RowsF inputs = randomInputs(batch, spec.inputs(), 11 + batch);
+          std::vector<pl::RowsF> outputs;
+          compiled.forward(inputs, outputs);
+          ASSERT_EQ(outputs.size(), 1u);
+          const Eigen::MatrixXf reference = model.forward(inputs);
+          EXPECT_GT(reference.cwiseAbs().maxCoeff(), 1e-3);  // not a trivially zero network
+          EXPECT_LT(relativeError(outputs[0], reference), 1e-5) << "batch " << batch << ", " << threads << " threads";
+        }
       }
     }
   }

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <string>
 
 namespace pixelcloth::learn {
 
@@ -211,17 +212,22 @@ std::vector<float> fewChannelWeights(const std::vector<float>& weights, int outC
   return packed;
 }
 
+std::vector<std::string> fewChannelBuilds() {
+  __builtin_cpu_init();
+  std::vector<std::string> builds{"baseline"};
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) builds.push_back("avx2");
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl") &&
+      __builtin_cpu_supports("avx512dq"))
+    builds.push_back("avx512");
+  return builds;
+}
+
 void fewChannelConvolution(const float* src, std::int64_t batch, int height, int width, int inChannels, int block,
                            const std::vector<float>& weights, const std::vector<float>& bias, int outChannels,
-                           float* dst) {
-  static const RangeKernel kernel = [] {
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl") &&
-        __builtin_cpu_supports("avx512dq"))
-      return &convolveAvx512;
-    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return &convolveAvx2;
-    return &convolveBaseline;
-  }();
+                           float* dst, const std::string& build) {
+  static const std::string best = fewChannelBuilds().back();
+  const std::string& chosen = build.empty() ? best : build;
+  const RangeKernel kernel = chosen == "avx512" ? &convolveAvx512 : chosen == "avx2" ? &convolveAvx2 : &convolveBaseline;
   const std::int64_t rows = batch * height;
 #pragma omp parallel
   {

@@ -7,6 +7,7 @@
 // neighbouring pixels are added at once; otherwise it slides the 3 x C window of a channels-last row along it.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace pixelcloth::learn {
@@ -18,10 +19,13 @@ namespace pixelcloth::learn {
 /// zero for the padded channels.
 std::vector<float> fewChannelWeights(const std::vector<float>& weights, int outChannels, int inChannels, int block);
 
+/// The kernel's builds this CPU runs, slowest first: "baseline", then "avx2", "avx512" where supported.
+std::vector<std::string> fewChannelBuilds();
+
 /// dst (batch x out x height x width, nchw) = bias + the 3x3 convolution, padding 1, of src (in channel blocks, as
-/// above). Spreads rows over OpenMP's threads; picks an AVX-512 or AVX2 build at run time.
+/// above). Spreads rows over OpenMP's threads; runs `build` (one of fewChannelBuilds()), by default the fastest.
 void fewChannelConvolution(const float* src, std::int64_t batch, int height, int width, int inChannels, int block,
                            const std::vector<float>& weights, const std::vector<float>& bias, int outChannels,
-                           float* dst);
+                           float* dst, const std::string& build = "");
 
 }  // namespace pixelcloth::learn

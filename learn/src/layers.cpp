@@ -16,13 +16,13 @@ struct TransposedConvolution : torch::autograd::Function<TransposedConvolution> 
     const torch::Tensor shape = torch::empty(
         {x.size(0), w.size(1), (x.size(2) - 1) * stride - 2 * padding + k, (x.size(3) - 1) * stride - 2 * padding + k},
         x.options());  // only its sizes are read
-    const torch::Tensor y = std::get<0>(at::convolution_backward(x.contiguous(), shape, w, c10::nullopt, {stride, stride},
+    torch::Tensor y = std::get<0>(at::convolution_backward(x.contiguous(), shape, w, c10::nullopt, {stride, stride},
                                                                  {padding, padding}, {1, 1}, false, {0, 0}, 1,
                                                                  {true, false, false}));
     ctx->save_for_backward({x, w});
     ctx->saved_data["stride"] = stride;
     ctx->saved_data["padding"] = padding;
-    return y + b.view({1, -1, 1, 1});
+    return y.add_(b.view({1, -1, 1, 1}));  // in place: a new map of this size costs more than the sum
   }
   static variable_list backward(AutogradContext* ctx, variable_list gradients) {
     const variable_list saved = ctx->get_saved_variables();

@@ -20,6 +20,7 @@ struct BodyArgs {
   double corruptFraction = 0.5;
   std::string importMesh;
   std::string joints;
+  bool largestComponent = false;
 };
 
 void runBody(const BodyArgs& args) {
@@ -29,6 +30,8 @@ void runBody(const BodyArgs& args) {
   using namespace pixelcloth::viz;
   PIXELCLOTH_CHECK(args.importMesh.empty() == args.joints.empty(),
                    "body: --import MESH and --joints JSON go together (a mesh needs its joint positions)");
+  PIXELCLOTH_CHECK(!args.importMesh.empty() || !args.largestComponent,
+                   "body: --largest-component goes with --import (the built-in mannequin is one piece)");
   PIXELCLOTH_CHECK(args.importMesh.empty() || args.shape == 0.0,
                    "body: --shape changes the built-in mannequin; it cannot be combined with --import");
   Body body;
@@ -46,7 +49,9 @@ void runBody(const BodyArgs& args) {
     Mesh mesh = readMesh(args.importMesh);
     checkOutputFolder(args.out);
     PIXELCLOTH_INFO("body: importing " << args.importMesh << " (" << mesh.numVertices() << " vertices)");
-    body = importBody(mesh, joints, args.importMesh);
+    ImportOptions options;
+    options.largestComponent = args.largestComponent;
+    body = importBody(mesh, joints, args.importMesh, options);
     description = "imported from " + args.importMesh;
   }
   if (!args.corrupt.empty()) {
@@ -83,6 +88,9 @@ void registerBody(CLI::App& app) {
   verb->add_option("--joints", args->joints,
                    "JSON of joint positions for --import: {\"joints\": {\"lower_back\": [x, y, z], ...}} with the 10 "
                    "pose joints (root, head, l_hand, r_hand optional)");
+  verb->add_flag("--largest-component", args->largestComponent,
+                 "With --import: keep only the mesh's largest piece, dropping separate shells (eyes, teeth, "
+                 "accessories); without it a mesh of several pieces is refused");
   verb->callback([args] { runBody(*args); });
 }
 

@@ -49,6 +49,11 @@ void runDress(const DressArgs& args) {
   PIXELCLOTH_INFO("dress: " << garment.name << " (" << garment.mesh.numVertices() << " vertices) on a "
                             << body.mesh.numVertices() << "-vertex body in " << 1e3 * seconds
                             << " ms: " << dressing.summary());
+  if (!dressing.relaxConverged)
+    PIXELCLOTH_WARN("dress: the relaxation stopped at its cap of " << dressing.relaxIterations
+                                                                   << " sweeps with vertices still moving "
+                                                                   << 1000 * dressing.relaxResidual
+                                                                   << " mm a sweep; the dressing may be uneven");
   viz::writeDressingFolder(body, garment, dressing, args.out);
 }
 }  // namespace

@@ -1,9 +1,13 @@
 // pixelcloth: one command-line front end over the library; one file per verb, no algorithms here.
 #include <exception>
 #include <iostream>
+#include <string>
+#include <vector>
 
+#include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/data/dataset.h"
 #include "verbs.h"
 
 int main(int argc, char** argv) {
@@ -12,8 +16,17 @@ int main(int argc, char** argv) {
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet,
                "Silence progress and information on stderr (warnings that data was lost still show)");
+  bool noVerify = false;
+  app.add_flag("--no-verify", noVerify,
+               "Read dataset files without checking them against manifest.json's sizes and CRC-32s first");
+  bool clampToLimits = false;
+  app.add_flag("--clamp-to-limits", clampToLimits,
+               "Clamp joint angles of pose files that lie beyond the joints' limits into them (with a warning) "
+               "instead of refusing the file");
   app.parse_complete_callback([&] {
     pixelcloth::core::setLogLevel(quiet ? pixelcloth::core::LogLevel::Warning : pixelcloth::core::LogLevel::Info);
+    pixelcloth::data::setVerifyDatasetFiles(!noVerify);
+    pixelcloth::body::setClampPosesToLimits(clampToLimits);
   });
 
   pixelcloth::apps::registerBody(app);
@@ -36,6 +49,20 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerPca(app);
   pixelcloth::apps::registerStitch(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
+  // Seeds are unsigned: "-1" would wrap to 2^64 - 1 and read as a valid, different seed. Refuse it in every verb.
+  const CLI::Validator nonNegative(
+      [](std::string& value) {
+        return !value.empty() && value.front() == '-' ? "a seed is a whole number of 0 or more, got " + value
+                                                      : std::string();
+      },
+      "SEED >= 0");
+  std::vector<CLI::App*> verbs = app.get_subcommands({});
+  while (!verbs.empty()) {
+    CLI::App* verb = verbs.back();
+    verbs.pop_back();
+    if (CLI::Option* seed = verb->get_option_no_throw("--seed")) seed->check(nonNegative);
+    for (CLI::App* sub : verb->get_subcommands({})) verbs.push_back(sub);
+  }
 
   try {
     app.parse(argc, argv);

@@ -17,6 +17,7 @@
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/core/npy.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/recon/base.h"
 #include "pixelcloth/viz/pictures.h"
@@ -116,6 +117,13 @@ void runFromMarkers(const ReconstructArgs& args) {
   garment::Embedding embedding;
   if (!args.dressing.empty()) {
     body = data::loadDatasetBody(args.dressing);
+    const std::filesystem::path restFile = std::filesystem::path(args.dressing) / "rest_positions.npy";
+    const core::NpyHeader restHeader = core::readNpyHeader(restFile);
+    PIXELCLOTH_CHECK(!restHeader.shape.empty() && restHeader.shape[0] == garment.mesh.numVertices(),
+                     restFile.string() << ": shape " << restHeader.shapeString() << ": the dressing is of a garment of "
+                                       << (restHeader.shape.empty() ? 0 : restHeader.shape[0]) << " vertices, the markers ("
+                                       << args.markers << ") are of the " << garment.name << " ("
+                                       << garment.mesh.numVertices() << " vertices): the garments differ");
     rest = data::loadDatasetRestPositions(args.dressing, garment.mesh.numVertices());
     embedding = data::loadDatasetEmbedding(args.dressing, body.mesh.numFaces());
     PIXELCLOTH_CHECK(embedding.size() == garment.mesh.numVertices(),
@@ -129,7 +137,7 @@ void runFromMarkers(const ReconstructArgs& args) {
   }
   if (options.lengthModel) options.lengthModel->validate(garment.name, cage, args.lengthModel);
   const recon::GarmentReconstructor reconstructor(body, garment, embedding, rest, options);
-  const recon::Reconstruction result = reconstructor.reconstruct(markers, pose, method);
+  const recon::Reconstruction result = reconstructor.reconstruct(markers, pose, method, args.markers);
   core::Mesh mesh = garment.mesh;
   mesh.V = result.positions;
   core::writeMesh(args.out, mesh);

@@ -47,6 +47,16 @@ Eigen::Vector3d extremeAlong(const Eigen::MatrixX3d& V, const Eigen::Vector3d& o
   return best;
 }
 
+/// The units a body of `height` (in the file's units) seems to be in, as advice for a message; "" when none fits.
+std::string unitsAdvice(double height) {
+  const std::pair<double, const char*> units[] = {
+      {0.01, "centimetres: scale it by 0.01"}, {0.001, "millimetres: scale it by 0.001"},
+      {0.0254, "inches: scale it by 0.0254"}, {0.3048, "feet: scale it by 0.3048"}};
+  for (const auto& [metres, advice] : units)
+    if (height * metres >= 1.0 && height * metres <= 2.3) return std::string("; it looks like ") + advice;
+  return "";
+}
+
 }  // namespace
 
 JointPositions readJointPositions(const std::filesystem::path& path) {
@@ -79,15 +89,44 @@ JointPositions readJointPositions(const std::filesystem::path& path) {
   return positions;
 }
 
-Body importBody(const Mesh& input, const JointPositions& joints, const std::string& context) {
+Body importBody(const Mesh& input, const JointPositions& joints, const std::string& context,
+                const ImportOptions& options) {
   input.validate(context);
+  // Metres: a person is 0.5 to 2.5 m tall, whichever axis is up.
+  const double height = (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).maxCoeff();
+  PIXELCLOTH_CHECK(height >= 0.5 && height <= 2.5, context << ": the body is " << height
+                                                           << " units tall (its bounding box's largest side); "
+                                                              "expected 0.5 to 2.5 metres"
+                                                           << unitsAdvice(height));
   TopologyReport topology = checkTopology(input.numVertices(), input.F);
-  PIXELCLOTH_CHECK(topology.closedManifold(),
-                   context << ": the body mesh must be closed and manifold, but " << topology.firstProblem << " ("
-                           << topology.boundaryEdges << " boundary edges, " << topology.nonManifoldEdges
-                           << " non-manifold edges, " << topology.nonManifoldVertices << " non-manifold vertices, "
-                           << topology.inconsistentEdges << " inconsistently oriented edges)");
+  const std::string shells = "separate shells such as eyes, teeth or accessories; --largest-component keeps the "
+                             "largest and drops the others";
+  auto componentText = [&](int c) {
+    return "component " + std::to_string(c) + " of " + std::to_string(topology.components) + " (" +
+           std::to_string(topology.componentFaces[c - 1]) + " faces; the largest has " +
+           std::to_string(topology.componentFaces[0]) + ")";
+  };
   Mesh mesh = input;
+  if (topology.components > 1 && options.largestComponent) {
+    mesh = largestComponent(input);
+    PIXELCLOTH_WARN(context << ": kept the largest of " << topology.components << " components ("
+                            << topology.componentFaces[0] << " of " << input.numFaces() << " faces, "
+                            << mesh.numVertices() << " of " << input.numVertices()
+                            << " vertices); vertex numbers below count in the kept mesh");
+    topology = checkTopology(mesh.numVertices(), mesh.F);
+  }
+  PIXELCLOTH_CHECK(topology.closedManifold(),
+                   context << ": the body mesh must be closed and manifold, but " << topology.firstProblem
+                           << (topology.components > 1 ? ", on " + componentText(topology.firstProblemComponent) : "")
+                           << " (" << topology.boundaryEdges << " boundary edges, " << topology.nonManifoldEdges
+                           << " non-manifold edges, " << topology.nonManifoldVertices << " non-manifold vertices, "
+                           << topology.inconsistentEdges << " inconsistently oriented edges)"
+                           << (topology.components > 1 && topology.firstProblemComponent > 1 ? "; " + shells : ""));
+  PIXELCLOTH_CHECK(topology.components == 1, context << ": the body mesh is closed but has " << topology.components
+                                                     << " components (face counts: largest "
+                                                     << topology.componentFaces[0] << ", next "
+                                                     << topology.componentFaces[1] << "); expected one body: "
+                                                     << shells);
   if (enclosedVolume(mesh.V, mesh.F) < 0) mesh.F.col(1).swap(mesh.F.col(2));
   for (const auto& name : kPoseJoints)
     PIXELCLOTH_CHECK(joints.count(name), context << ": missing joint '" << name << "'");

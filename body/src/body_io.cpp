@@ -77,6 +77,11 @@ Body loadBody(const fs::path& folder) {
   PIXELCLOTH_CHECK(fs::is_directory(folder, ec), folder.string() << ": no such body folder (expected body.obj, "
                                                                     "skeleton.json, weights.npy, parts.json; "
                                                                     "make one with 'pixelcloth body --out DIR')");
+  // A dataset or dressing folder holds its body in body/: say so rather than "body.obj: no such file".
+  PIXELCLOTH_CHECK(fs::exists(folder / "body.obj", ec) || !fs::is_regular_file(folder / "body" / "body.obj", ec),
+                   folder.string() << ": is not a body folder but holds one (a dataset or dressing folder?); give its "
+                                      "body folder, "
+                                   << (folder / "body").string());
   Body body;
   body.mesh = readMesh(folder / "body.obj");
 

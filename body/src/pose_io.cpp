@@ -1,11 +1,13 @@
 #include "pixelcloth/body/pose_io.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
+#include "pixelcloth/core/log.h"
 
 namespace pixelcloth::body {
 
@@ -60,7 +62,21 @@ Pose poseFromJson(const nlohmann::json& json, const std::string& context) {
   return Pose::fromVector(vector, context);
 }
 
-Pose readPose(const std::filesystem::path& path) { return poseFromJson(readJson(path), path.string()); }
+namespace {
+std::atomic<bool> clampToLimits{false};
+}  // namespace
+
+void setClampPosesToLimits(bool clamp) { clampToLimits = clamp; }
+
+Pose readPose(const std::filesystem::path& path) {
+  const Pose pose = poseFromJson(readJson(path), path.string());
+  const std::string beyond = pose.limitViolation();
+  if (beyond.empty()) return pose;
+  PIXELCLOTH_CHECK(clampToLimits, path.string() << ": " << beyond << "; --clamp-to-limits clamps every angle into its "
+                                                                   "limits instead");
+  PIXELCLOTH_WARN(path.string() << ": " << beyond << "; clamped into the limits (--clamp-to-limits)");
+  return pose.clampedToLimits();
+}
 
 nlohmann::json poseToJson(const Pose& pose) {
   Eigen::VectorXf vector = pose.toVector();

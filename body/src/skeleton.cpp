@@ -1,9 +1,11 @@
 #include "pixelcloth/body/skeleton.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
+#include <sstream>
 
 #include "pixelcloth/core/error.h"
 
@@ -190,6 +192,31 @@ bool Pose::withinLimits(double slackDegrees) const {
     }
   }
   return true;
+}
+
+std::string Pose::limitViolation(double slackDegrees) const {
+  const Eigen::Matrix<double, 10, 3> degrees = toEulerDegrees();
+  for (int k = 0; k < 10; ++k) {
+    const JointLimits& limits = jointLimits(kPoseJoints[k]);
+    for (int a = 0; a < 3; ++a)
+      if (degrees(k, a) < limits.lower[a] - slackDegrees || degrees(k, a) > limits.upper[a] + slackDegrees) {
+        std::ostringstream text;
+        text << "joint '" << kPoseJoints[k] << "': " << "xyz"[a] << " = " << degrees(k, a)
+             << " degrees, beyond its limits " << limits.lower[a] << " to " << limits.upper[a] << " ("
+             << limits.source << "; Euler angles composed x, then z, then y)";
+        return text.str();
+      }
+  }
+  return "";
+}
+
+Pose Pose::clampedToLimits() const {
+  Eigen::Matrix<double, 10, 3> degrees = toEulerDegrees();
+  for (int k = 0; k < 10; ++k) {
+    const JointLimits& limits = jointLimits(kPoseJoints[k]);
+    for (int a = 0; a < 3; ++a) degrees(k, a) = std::clamp(degrees(k, a), limits.lower[a], limits.upper[a]);
+  }
+  return fromEulerDegrees(degrees);
 }
 
 JointTransforms forwardKinematics(const Skeleton& skeleton, const Pose& pose) {

@@ -176,8 +176,8 @@ void Body::validate(const std::string& context) const {
                            << mesh.numVertices() << " vertices x " << skeleton.numJoints() << " joints");
   for (int v = 0; v < weights.rows(); ++v) {
     PIXELCLOTH_CHECK(weights.row(v).allFinite() && weights.row(v).minCoeff() >= 0,
-                     context << ": skin weights of vertex " << v << " are negative or not finite");
-    PIXELCLOTH_CHECK(std::abs(weights.row(v).sum() - 1.0) < 1e-3, context << ": skin weights of vertex " << v
+                     context << ": skin weights of vertex " << v + 1 << " are negative or not finite");
+    PIXELCLOTH_CHECK(std::abs(weights.row(v).sum() - 1.0) < 1e-3, context << ": skin weights of vertex " << v + 1
                                                                           << " sum to " << weights.row(v).sum()
                                                                           << ", expected 1");
   }

@@ -371,7 +371,8 @@ std::string Dressing::summary() const {
   const std::vector<double> before = log2Of(areaRatioBefore), after = log2Of(areaRatioAfter);
   std::ostringstream s;
   s << std::setprecision(3) << cageVertices.size() << " cage vertices, " << pushedVertices << " pushed out (max "
-    << 100 * maxPenetration << " cm deep), " << relaxIterations << " sweeps (residual " << relaxResidual
+    << 100 * maxPenetration << " cm deep), " << relaxIterations
+    << (relaxConverged ? " sweeps" : " sweeps, stopped at the cap before settling") << " (residual " << relaxResidual
     << " m), log2 area ratio 5-95% [" << percentile(before, 0.05) << ", " << percentile(before, 0.95) << "] -> ["
     << percentile(after, 0.05) << ", " << percentile(after, 0.95) << "]";
   return s.str();
@@ -590,6 +591,7 @@ Dressing dressGarment(const body::Body& body, const Cage& bodyCage, const garmen
       ++d.relaxIterations;
     }
     if (d.relaxIterations == 0) d.relaxResidual = 0;
+    d.relaxConverged = d.relaxResidual < options.relaxTolerance;
   }
   PIXELCLOTH_CHECK(d.relaxed.allFinite(), "dressing: the relaxed garment is not finite");
   d.areaRatioAfter = core::areaRatios(d.relaxed, garment.mesh);

@@ -16,17 +16,18 @@ void Mesh::validate(const std::string& context) const {
   PIXELCLOTH_CHECK(V.rows() > 0, context << ": the mesh has no vertices");
   PIXELCLOTH_CHECK(F.rows() > 0, context << ": the mesh has no faces");
   for (int i = 0; i < V.rows(); ++i) {
-    PIXELCLOTH_CHECK(V.row(i).allFinite(), context << ": vertex " << i << " has a non-finite coordinate (" << V(i, 0)
+    PIXELCLOTH_CHECK(V.row(i).allFinite(), context << ": vertex " << i + 1 << " has a non-finite coordinate (" << V(i, 0)
                                                    << ", " << V(i, 1) << ", " << V(i, 2) << ")");
   }
   for (int f = 0; f < F.rows(); ++f) {
     for (int k = 0; k < 3; ++k) {
-      PIXELCLOTH_CHECK(F(f, k) >= 0 && F(f, k) < V.rows(), context << ": face " << f << " uses vertex " << F(f, k)
+      PIXELCLOTH_CHECK(F(f, k) >= 0 && F(f, k) < V.rows(), context << ": face " << f + 1 << " uses vertex " << F(f, k) + 1
                                                                    << ", but the mesh has " << V.rows() << " vertices");
     }
     PIXELCLOTH_CHECK(
         F(f, 0) != F(f, 1) && F(f, 1) != F(f, 2) && F(f, 0) != F(f, 2),
-        context << ": face " << f << " repeats a vertex (" << F(f, 0) << ", " << F(f, 1) << ", " << F(f, 2) << ")");
+        context << ": face " << f + 1 << " repeats a vertex (" << F(f, 0) + 1 << ", " << F(f, 1) + 1 << ", " << F(f, 2) + 1
+                << ")");
   }
   if (FUV.rows() > 0) {
     PIXELCLOTH_CHECK(FUV.rows() == F.rows(), context << ": " << FUV.rows() << " texture faces for " << F.rows()
@@ -122,8 +123,11 @@ Eigen::MatrixX3d vertexNormals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i
 
 TopologyReport checkTopology(int numVertices, const Eigen::MatrixX3i& F) {
   TopologyReport report;
-  auto note = [&](const std::string& problem) {
-    if (report.firstProblem.empty()) report.firstProblem = problem;
+  int problemVertex = -1;
+  auto note = [&](const std::string& problem, int vertex) {
+    if (!report.firstProblem.empty()) return;
+    report.firstProblem = problem;
+    problemVertex = vertex;
   };
   // Directed half-edges keyed by (from, to).
   std::unordered_map<std::uint64_t, int> directed;
@@ -138,18 +142,21 @@ TopologyReport checkTopology(int numVertices, const Eigen::MatrixX3i& F) {
     int back = reverse == directed.end() ? 0 : reverse->second;
     if (count > 1) {
       ++report.inconsistentEdges;
-      note("edge (" + std::to_string(a) + ", " + std::to_string(b) + ") is used " + std::to_string(count) +
-           " times in the same direction");
+      note("edge (" + std::to_string(a + 1) + ", " + std::to_string(b + 1) + ") is used " + std::to_string(count) +
+               " times in the same direction",
+           a);
     }
     if (a < b || back == 0) {
       int uses = count + back;
       if (uses == 1) {
         ++report.boundaryEdges;
-        note("edge (" + std::to_string(a) + ", " + std::to_string(b) + ") is on a boundary (used by one face)");
+        note("edge (" + std::to_string(a + 1) + ", " + std::to_string(b + 1) + ") is on a boundary (used by one face)",
+             a);
       } else if (uses > 2) {
         ++report.nonManifoldEdges;
-        note("edge (" + std::to_string(std::min(a, b)) + ", " + std::to_string(std::max(a, b)) + ") is shared by " +
-             std::to_string(uses) + " faces");
+        note("edge (" + std::to_string(std::min(a, b) + 1) + ", " + std::to_string(std::max(a, b) + 1) +
+                 ") is shared by " + std::to_string(uses) + " faces",
+             a);
       }
     }
   }
@@ -180,17 +187,81 @@ TopologyReport checkTopology(int numVertices, const Eigen::MatrixX3i& F) {
     for (size_t i = 0; i < faces.size(); ++i) roots += find(static_cast<int>(i)) == static_cast<int>(i);
     if (roots > 1) {
       ++report.nonManifoldVertices;
-      note("vertex " + std::to_string(v) + " joins " + std::to_string(roots) + " separate fans of faces");
+      note("vertex " + std::to_string(v + 1) + " joins " + std::to_string(roots) + " separate fans of faces", v);
     }
   }
-  // Connected components of faces through shared vertices.
+  const std::vector<int> component = faceComponents(numVertices, F);
+  for (int c : component) {
+    if (c >= static_cast<int>(report.componentFaces.size())) report.componentFaces.resize(c + 1, 0);
+    ++report.componentFaces[c];
+  }
+  report.components = static_cast<int>(report.componentFaces.size());
+  if (problemVertex >= 0 && !vertexFaces[problemVertex].empty())
+    report.firstProblemComponent = component[vertexFaces[problemVertex].front()] + 1;
+  return report;
+}
+
+std::vector<int> faceComponents(int numVertices, const Eigen::MatrixX3i& F) {
+  // Faces joined through shared vertices (union-find), then the components ranked by size.
   std::vector<int> parent(F.rows());
   std::iota(parent.begin(), parent.end(), 0);
   std::function<int(int)> find = [&](int i) { return parent[i] == i ? i : parent[i] = find(parent[i]); };
-  for (const auto& faces : vertexFaces)
-    for (size_t i = 1; i < faces.size(); ++i) parent[find(faces[i])] = find(faces[0]);
-  for (int f = 0; f < F.rows(); ++f) report.components += find(f) == f;
-  return report;
+  std::vector<int> firstFace(numVertices, -1);
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      int& first = firstFace[F(f, k)];
+      if (first < 0)
+        first = f;
+      else
+        parent[find(f)] = find(first);
+    }
+  std::unordered_map<int, int> size;
+  for (int f = 0; f < F.rows(); ++f) ++size[find(f)];
+  std::vector<std::pair<int, int>> roots(size.begin(), size.end());  // (root, faces)
+  std::sort(roots.begin(), roots.end(), [](const auto& a, const auto& b) {
+    return a.second != b.second ? a.second > b.second : a.first < b.first;
+  });
+  std::unordered_map<int, int> rank;
+  for (size_t r = 0; r < roots.size(); ++r) rank[roots[r].first] = static_cast<int>(r);
+  std::vector<int> component(F.rows());
+  for (int f = 0; f < F.rows(); ++f) component[f] = rank[find(f)];
+  return component;
+}
+
+Mesh largestComponent(const Mesh& mesh) {
+  const std::vector<int> component = faceComponents(mesh.numVertices(), mesh.F);
+  std::vector<int> kept;
+  for (int f = 0; f < mesh.numFaces(); ++f)
+    if (component[f] == 0) kept.push_back(f);
+  std::vector<int> index(mesh.numVertices(), -1);
+  for (int f : kept)
+    for (int k = 0; k < 3; ++k) index[mesh.F(f, k)] = 0;
+  int next = 0;
+  for (int& i : index)
+    if (i == 0) i = next++;
+  Mesh result;
+  result.V.resize(next, 3);
+  for (auto& [name, values] : mesh.vertexAttributes) result.vertexAttributes[name].resize(next, values.cols());
+  for (int v = 0; v < mesh.numVertices(); ++v) {
+    if (index[v] < 0) continue;
+    result.V.row(index[v]) = mesh.V.row(v);
+    for (auto& [name, values] : mesh.vertexAttributes) result.vertexAttributes[name].row(index[v]) = values.row(v);
+  }
+  const auto faces = static_cast<Eigen::Index>(kept.size());
+  result.F.resize(faces, 3);
+  for (Eigen::Index i = 0; i < faces; ++i)
+    for (int k = 0; k < 3; ++k) result.F(i, k) = index[mesh.F(kept[i], k)];
+  if (mesh.hasUV()) {  // the texture coordinates stay; the kept faces keep their corners' indices into them
+    result.UV = mesh.UV;
+    result.FUV.resize(faces, 3);
+    for (Eigen::Index i = 0; i < faces; ++i) result.FUV.row(i) = mesh.FUV.row(kept[i]);
+  }
+  for (auto& [name, values] : mesh.faceAttributes) {
+    Eigen::VectorXi& out = result.faceAttributes[name];
+    out.resize(faces);
+    for (Eigen::Index i = 0; i < faces; ++i) out(i) = values(kept[i]);
+  }
+  return result;
 }
 
 double enclosedVolume(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {

@@ -1,10 +1,13 @@
 #include "pixelcloth/core/npy.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 
 #include "pixelcloth/core/atomic_file.h"
 
@@ -149,6 +152,14 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> readMatrix(const fs::path&
       array.shape.size() == 2 && (rowsExpected < 0 || array.shape[0] == rowsExpected) &&
           (colsExpected < 0 || array.shape[1] == colsExpected),
       path.string() << ": shape " << array.shapeString() << ", expected " << expectedShape(rowsExpected, colsExpected));
+  if constexpr (std::is_floating_point_v<Scalar>) {  // no matrix of ours holds NaN or infinity
+    const Scalar* values = array.data<Scalar>();
+    const std::int64_t count = array.size(), columns = std::max<std::int64_t>(array.shape[1], 1);
+    for (std::int64_t i = 0; i < count; ++i)
+      PIXELCLOTH_CHECK(std::isfinite(values[i]), path.string() << ": row " << i / columns + 1 << ", column "
+                                                               << i % columns + 1 << " (counting from 1) is "
+                                                               << values[i] << "; expected finite numbers");
+  }
   using RowMajor = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   return Eigen::Map<const RowMajor>(array.data<Scalar>(), array.shape[0], array.shape[1]);
 }

@@ -1,6 +1,9 @@
 // Merging shard folders into one dataset, streamed in index order.
 #include <algorithm>
 #include <fstream>
+#include <string>
+
+#include <unistd.h>
 
 #include "dataset_internal.h"
 #include "pixelcloth/core/atomic_file.h"
@@ -67,13 +70,29 @@ DatasetInfo mergeDatasets(const std::vector<fs::path>& shardFolders, const fs::p
   for (const DatasetInfo& shard : shards)
     PIXELCLOTH_CHECK(!fs::equivalent(shard.folder, out, ec), out.string() << ": is one of the shards");
 
+  // Everything is written into a staging folder beside `out`, renamed into place at the end: a failed merge (a
+  // damaged shard, a full disk) leaves no half-filled folder to block the retry.
+  fs::path target = fs::absolute(out).lexically_normal();
+  if (target.filename().empty()) target = target.parent_path();  // "merged/"
+  const fs::path staging =
+      target.parent_path() / (target.filename().string() + ".merging-" + std::to_string(::getpid()));
+  fs::remove_all(staging, ec);
+  fs::create_directories(staging);
+  struct RemoveUnlessDone {
+    fs::path folder;
+    bool done = false;
+    ~RemoveUnlessDone() {
+      std::error_code ignored;
+      if (!done) fs::remove_all(folder, ignored);
+    }
+  } cleanup{staging};
   json checksums = json::object();
   for (const std::string& file : sharedFiles(reference.folder)) {
-    core::writeAtomically(out / file, [&](const fs::path& temporary) {
+    core::writeAtomically(staging / file, [&](const fs::path& temporary) {
       fs::copy_file(reference.folder / file, temporary, fs::copy_options::overwrite_existing);
     });
     checksums[file] = reference.manifest["checksums"].value(
-        file, json{{"crc32", fileCrc32(out / file)}, {"bytes", fs::file_size(out / file)}});
+        file, json{{"crc32", fileCrc32(staging / file)}, {"bytes", fs::file_size(staging / file)}});
   }
 
   // Arrays: each shard's rows appended in order; each input's CRC checked against its manifest on the way.
@@ -90,7 +109,7 @@ DatasetInfo mergeDatasets(const std::vector<fs::path>& shardFolders, const fs::p
   core::Progress progress("dataset merge", static_cast<std::int64_t>(parts.size() * shards.size()));
   std::vector<char> buffer(1 << 20);
   for (const Part& part : parts) {
-    core::writeAtomically(out / part.file, [&](const fs::path& temporary) {
+    core::writeAtomically(staging / part.file, [&](const fs::path& temporary) {
       CrcWriter writer(temporary);
       const std::string preamble = core::npyPreamble(part.dtype, part.shape);
       writer.write(preamble.data(), preamble.size());
@@ -139,7 +158,10 @@ DatasetInfo mergeDatasets(const std::vector<fs::path>& shardFolders, const fs::p
   for (const char* array : {"poses", "positions", "offsets", "split"})
     if (manifest.contains("arrays") && manifest["arrays"].contains(array)) manifest["arrays"][array]["shape"][0] = N;
   manifest["merged_from"] = shards.size();
-  core::writeJson(out / kManifest, manifest);
+  core::writeJson(staging / kManifest, manifest);
+  if (fs::is_directory(out, ec)) fs::remove(out, ec);  // empty, checked above; rename needs the name free
+  fs::rename(staging, out);
+  cleanup.done = true;
   PIXELCLOTH_INFO("dataset merge: " << shards.size() << " shards, " << N << " samples -> " << out.string());
   return readDatasetInfo(out);
 }

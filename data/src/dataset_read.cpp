@@ -1,5 +1,6 @@
 // Reading and verifying finished dataset folders.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -127,9 +128,43 @@ std::vector<int> Dataset::rowsOf(Split which) const {
   return result;
 }
 
+namespace {
+std::atomic<bool> verifyFiles{true};
+
+/// Verifies every file the manifest of `folder` lists whose name starts with `prefix` ("body/", "embedding"). A
+/// folder without manifest.json (a dressing folder: body/, embedding and rest positions only) has nothing to check.
+void verifyFilesStartingWith(const fs::path& folder, const std::string& prefix) {
+  std::error_code ec;
+  if (!verifyDatasetFiles() || !fs::is_regular_file(folder / kManifest, ec)) return;
+  const DatasetInfo info = readDatasetInfo(folder);
+  for (const auto& [name, entry] : info.manifest["checksums"].items())
+    if (name.rfind(prefix, 0) == 0) verifyDatasetFile(info, name);
+}
+}  // namespace
+
+void setVerifyDatasetFiles(bool verify) { verifyFiles = verify; }
+bool verifyDatasetFiles() { return verifyFiles; }
+
+void verifyDatasetFile(const DatasetInfo& info, const std::string& name) {
+  if (!verifyDatasetFiles()) return;
+  const json& checksums = info.manifest["checksums"];
+  if (!checksums.contains(name)) return;
+  const fs::path path = info.folder / name;
+  std::error_code ec;
+  PIXELCLOTH_CHECK(fs::is_regular_file(path, ec), path.string() << ": missing (listed in manifest.json checksums)");
+  const auto bytes = checksums[name]["bytes"].get<std::uint64_t>();
+  const std::uintmax_t size = fs::file_size(path, ec);
+  PIXELCLOTH_CHECK(size == bytes, path.string() << ": " << size << " bytes, manifest.json says " << bytes
+                                                << " (the file is damaged or was changed; --no-verify reads it anyway)");
+  const std::uint32_t crc = fileCrc32(path), expected = checksums[name]["crc32"].get<std::uint32_t>();
+  PIXELCLOTH_CHECK(crc == expected, path.string() << ": CRC-32 " << crc << ", manifest.json says " << expected
+                                                  << " (the file is damaged or was changed; --no-verify reads it anyway)");
+}
+
 Dataset openDataset(const fs::path& folder) {
   Dataset d;
   d.info = readDatasetInfo(folder);
+  for (const char* name : {kPoses, kPositions, kOffsets, kSplit}) verifyDatasetFile(d.info, name);
   const DatasetSettings& s = d.info.settings;
   const std::int64_t rows = s.rows(), V = s.vertexCount;
   d.poses = core::readNpyMatrixF(folder / kPoses, rows, s.poseSize);
@@ -146,13 +181,18 @@ Dataset openDataset(const fs::path& folder) {
   return d;
 }
 
-body::Body loadDatasetBody(const fs::path& folder) { return body::loadBody(folder / "body"); }
+body::Body loadDatasetBody(const fs::path& folder) {
+  verifyFilesStartingWith(folder, "body/");
+  return body::loadBody(folder / "body");
+}
 
 garment::Embedding loadDatasetEmbedding(const fs::path& folder, int numBodyFaces) {
+  verifyFilesStartingWith(folder, "embedding");
   return garment::loadEmbedding(folder, numBodyFaces);
 }
 
 Eigen::MatrixX3d loadDatasetRestPositions(const fs::path& folder, int vertexCount) {
+  verifyFilesStartingWith(folder, kRestPositions);
   return core::readNpyMatrixD(folder / kRestPositions, vertexCount, 3);
 }
 
@@ -160,6 +200,7 @@ garment::Garment datasetGarment(const DatasetInfo& info) {
   garment::Garment garment =
       garment::makeGarment(info.settings.garment, info.folder.string() + ": manifest.json: garment");
   const fs::path stored = info.folder / "garment" / "garment.obj";
+  verifyDatasetFile(info, "garment/garment.obj");
   const core::Mesh mesh = core::readMesh(stored);
   PIXELCLOTH_CHECK(mesh.numVertices() == garment.mesh.numVertices() && mesh.F == garment.mesh.F,
                    stored.string() << ": " << mesh.numVertices() << " vertices, " << mesh.numFaces()

@@ -18,11 +18,11 @@ void Embedding::validate(int numBodyFaces, const std::string& context) const {
                            << tangentCoords.rows() << " tangent rows");
   for (int i = 0; i < n; ++i) {
     PIXELCLOTH_CHECK(triangle[i] >= 0 && triangle[i] < numBodyFaces,
-                     context << ": cloth vertex " << i << " is embedded in body face " << triangle[i]
+                     context << ": cloth vertex " << i + 1 << " is embedded in body face " << triangle[i] + 1
                              << ", but the body has " << numBodyFaces << " faces");
     PIXELCLOTH_CHECK(barycentric.row(i).allFinite() && barycentric.row(i).minCoeff() >= -1e-9 &&
                          std::abs(barycentric.row(i).sum() - 1.0) < 1e-6 && tangentCoords.row(i).allFinite(),
-                     context << ": cloth vertex " << i << " has invalid barycentric or tangent coordinates");
+                     context << ": cloth vertex " << i + 1 << " has invalid barycentric or tangent coordinates");
   }
 }
 

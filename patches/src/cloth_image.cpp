@@ -82,6 +82,19 @@ ClothImage ClothImage::fromExr(const core::ExrImage& exr) {
     image.layers.push_back(std::move(layer));
   }
   image.validate();
+  for (const ClothLayer& l : image.layers) {  // the first NaN or infinity, row by row
+    const std::pair<const Eigen::MatrixXf*, const char*> channels[] = {
+        {&l.du, "du"}, {&l.dv, "dv"}, {&l.dn, "dn"}, {&l.mask, "mask"}};
+    for (const auto& [c, channel] : channels) {
+      if (c->allFinite()) continue;
+      for (Eigen::Index y = 0; y < c->rows(); ++y)
+        for (Eigen::Index x = 0; x < c->cols(); ++x)
+          PIXELCLOTH_CHECK(std::isfinite((*c)(y, x)),
+                           sourceName(image.source) << ": channel '" << prefix(l.name) << channel << "' is " << (*c)(y, x)
+                                                    << " at row " << y + 1 << ", column " << x + 1
+                                                    << " (counting from 1); expected finite numbers");
+    }
+  }
   return image;
 }
 

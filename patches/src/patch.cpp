@@ -125,7 +125,7 @@ Eigen::Vector2d patchPixelExtent(const garment::Garment& garment, const Patch& p
   Eigen::AlignedBox2d box;
   for (int v : patch.vertices) {
     const int row = garment.vertexUV(v, patch.layout);
-    PIXELCLOTH_CHECK(row >= 0, garment.name << ": patch " << patch.id << " uses vertex " << v << ", which layout "
+    PIXELCLOTH_CHECK(row >= 0, garment.name << ": patch " << patch.id << " uses vertex " << v + 1 << ", which layout "
                                             << garment.layouts[patch.layout] << " lacks");
     box.extend(Eigen::Vector2d(garment.mesh.UV.row(row).transpose()));
   }

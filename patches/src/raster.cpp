@@ -273,7 +273,7 @@ SampleOperator buildSample(const garment::Garment& garment, const RasterOperator
   triplets.reserve(4 * raster.vertices.size());
   for (int v : raster.vertices) {
     PIXELCLOTH_CHECK(v >= 0 && v < mesh.numVertices() && garment.vertexUV(v, raster.layout) >= 0,
-                     garment.name << ": vertex " << v << " has no UV in layout " << garment.layouts[raster.layout]);
+                     garment.name << ": vertex " << v + 1 << " has no UV in layout " << garment.layouts[raster.layout]);
     Eigen::Vector2d p = frame.toPixel(mesh.UV.row(garment.vertexUV(v, raster.layout)).transpose());
     double fx = p.x() - 0.5, fy = p.y() - 0.5;
     int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));

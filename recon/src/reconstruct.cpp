@@ -193,7 +193,18 @@ Reconstruction GarmentReconstructor::fillFromCage(const Eigen::MatrixX3d& cagePo
 }
 
 Reconstruction GarmentReconstructor::reconstruct(const cage::MarkerSet& markers, const PosedBody& body,
-                                                 ReconstructionMethod method) const {
+                                                 ReconstructionMethod method, const std::string& context) const {
+  const Eigen::MatrixX3d& rest = body.frames().origin;
+  for (const cage::Marker& m : markers.markers) {
+    PIXELCLOTH_CHECK(m.vertex >= 0 && m.vertex < rest.rows(),
+                     context << ": marker '" << m.name << "' is on vertex " << m.vertex << ", the " << impl_->garment.name
+                             << " has " << rest.rows());
+    const double distance = (m.position - rest.row(m.vertex).transpose()).norm();
+    PIXELCLOTH_CHECK(distance <= kMaxMarkerDistance,
+                     context << ": marker '" << m.name << "' is " << distance
+                             << " m from where its garment vertex rests on the posed body; expected within "
+                             << kMaxMarkerDistance << " m (markers in other units than metres, or of another pose?)");
+  }
   const cage::CageFit fit = impl_->solver->solve(markers, curveMethodOf(method));
   Reconstruction result = fillFromCage(fit.positions, body, method == ReconstructionMethod::SplineAnisotropic);
   result.spline = fit.summary;
@@ -201,9 +212,9 @@ Reconstruction GarmentReconstructor::reconstruct(const cage::MarkerSet& markers,
 }
 
 Reconstruction GarmentReconstructor::reconstruct(const cage::MarkerSet& markers, const body::Pose& pose,
-                                                 ReconstructionMethod method) const {
-  markers.validate(impl_->garment, impl_->cage, "markers", true);
-  return reconstruct(markers, posed(pose), method);
+                                                 ReconstructionMethod method, const std::string& context) const {
+  markers.validate(impl_->garment, impl_->cage, context, true);
+  return reconstruct(markers, posed(pose), method, context);
 }
 
 // ---------------------------------------------------------------------------------------------------------------------

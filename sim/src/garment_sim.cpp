@@ -116,6 +116,7 @@ GarmentSimulator::GarmentSimulator(const body::Body& body, const garment::Garmen
     solver_->setFriction(0);
     report = solver_->relax(rest_, options_.restIterations);
     solver_->setFriction(options_.solver.friction);
+    restSettled_ = report.converged;
   }
   // Springs on the contacts of the settled drape, for good: no refactoring per sample, and every simulator built
   // from the same drape (one per thread) gives the same sample for the same pose.

@@ -159,9 +159,16 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
     const int threads = threadCount(options.threads, static_cast<int>(pending.size()));
     PIXELCLOTH_INFO("generate: settling the garment in the rest pose");
     GarmentSimulator first(body, garment, dressing, options.simulation);
-    PIXELCLOTH_INFO("generate: rest drape settled in " << first.restStats().iterations << " iterations ("
-                                                       << first.restStats().seconds << " s); " << pending.size()
-                                                       << " samples on " << threads << " threads");
+    const data::SampleStats& rest = first.restStats();
+    if (!first.restSettled())
+      PIXELCLOTH_WARN("generate: the rest drape did not settle: the solver stopped at its cap of "
+                      << options.simulation.restIterations << " iterations with vertices still moving "
+                      << 1000 * rest.residual << " mm an iteration (" << rest.seconds
+                      << " s); the samples start from this drape");
+    else
+      PIXELCLOTH_INFO("generate: rest drape settled in " << rest.iterations << " iterations (" << rest.seconds
+                                                         << " s)");
+    PIXELCLOTH_INFO("generate: " << pending.size() << " samples on " << threads << " threads");
     std::unique_ptr<core::Progress> progress;
     if (!options.quiet)
       progress = std::make_unique<core::Progress>("generate " + options.garment, static_cast<int>(pending.size()));

@@ -393,7 +393,7 @@ QuasistaticSolver::QuasistaticSolver(const core::Mesh& cloth, const std::vector<
     }
   }
   for (int v = 0; v < n; ++v)
-    PIXELCLOTH_CHECK(vertexArea(v) > 0, "solver: cloth vertex " << v << " belongs to no triangle");
+    PIXELCLOTH_CHECK(vertexArea(v) > 0, "solver: cloth vertex " << v + 1 << " belongs to no triangle");
   s.mass = options_.density * vertexArea;
 
   Eigen::SparseMatrix<double> K(n, n);

@@ -26,7 +26,7 @@ Eigen::MatrixXf assembleMean(const std::vector<learn::NetworkPrediction>& predic
   const Eigen::Index batch = predictions.front().values.rows();
   const Eigen::VectorXi count = coverage(predictions, numVertices);
   for (int v = 0; v < numVertices; ++v)
-    PIXELCLOTH_CHECK(count(v) > 0, "assemble: no network predicts vertex " << v << " (a patch model without all its "
+    PIXELCLOTH_CHECK(count(v) > 0, "assemble: no network predicts vertex " << v + 1 << " (a patch model without all its "
                                                                            "patches? train the missing ones)");
   Eigen::MatrixXf sum = Eigen::MatrixXf::Zero(batch, 3 * numVertices);
   for (const learn::NetworkPrediction& p : predictions) {
@@ -117,7 +117,7 @@ Eigen::MatrixXf FeatherAssembler::assemble(const std::vector<learn::NetworkPredi
     }
   }
   for (int v = 0; v < numVertices_; ++v) {
-    PIXELCLOTH_CHECK(total(v) > 0, "assemble: no network predicts vertex " << v << " (a patch model without all its "
+    PIXELCLOTH_CHECK(total(v) > 0, "assemble: no network predicts vertex " << v + 1 << " (a patch model without all its "
                                                                            "patches? train the missing ones)");
     sum.middleCols<3>(3 * v) /= total(v);
   }

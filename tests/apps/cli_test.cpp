@@ -14,6 +14,7 @@
 #include <functional>
 #include <initializer_list>
 #include <iostream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
@@ -1215,6 +1216,167 @@ TEST_F(CliReconstructTest, RefusesBadInputsNamingTheFileAndWritesNothing) {
       {"nowhere"}));
   EXPECT_TRUE(filesUnder(work_ / "r1").empty());
   EXPECT_TRUE(filesUnder(work_ / "r2").empty());
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// Issue 16: the gaps a new user's bad inputs found
+
+TEST_F(CliTest, NegativeSeedsAreRefusedInEveryVerb) {
+  const fs::path work = dir("work");
+  EXPECT_TRUE(refused(runPixelcloth({"pose", "--random", "1", "--seed", "-1", "--body", (work / "b").string(), "--out",
+                                     (work / "p").string()}),
+                      {"--seed", "a seed is a whole number of 0 or more, got -1"}));
+  EXPECT_TRUE(refused(runPixelcloth({"generate", "--count", "2", "--seed", "-5", "--out", (work / "d").string()}),
+                      {"--seed", "got -5"}));
+  EXPECT_TRUE(refused(runPixelcloth({"dataset", "import", "--garment", "necktie", "--objs", work.string(), "--poses",
+                                     (work / "p.csv").string(), "--dressing", work.string(), "--seed", "-2", "--out",
+                                     (work / "i").string()}),
+                      {"--seed", "got -2"}));
+  EXPECT_TRUE(filesUnder(work).empty()) << listing(filesUnder(work));
+}
+
+TEST_F(CliTest, ImagesRefusesNanInValuesAndInAnImage) {
+  const fs::path work = dir("work");
+  Eigen::MatrixXf x = shirtOffsets();
+  x(10, 2) = std::numeric_limits<float>::quiet_NaN();
+  core::writeNpy(work / "nan.npy", x);
+  EXPECT_TRUE(refused(runPixelcloth({"images", "--garment", "tshirt", "--values", (work / "nan.npy").string(), "--out",
+                                     (work / "img").string()}),
+                      {"nan.npy", "row 11, column 3 (counting from 1) is nan"}));
+  EXPECT_TRUE(filesUnder(work / "img").empty());
+
+  core::writeNpy(work / "good.npy", shirtOffsets());
+  ASSERT_EQ(runPixelcloth({"images", "--garment", "tshirt", "--values", (work / "good.npy").string(), "--out",
+                           (work / "good").string()})
+                .status,
+            0);
+  core::ExrImage exr = core::readExr(work / "good" / "cloth.exr");
+  for (size_t c = 0; c < exr.channels.size(); ++c)
+    if (exr.channelNames[c] == "back.dn") exr.channels[c](7, 20) = std::numeric_limits<float>::infinity();
+  core::writeExr(work / "inf.exr", exr);
+  EXPECT_TRUE(refused(runPixelcloth({"images", "--garment", "tshirt", "--image", (work / "inf.exr").string(), "--out",
+                                     (work / "v.npy").string()}),
+                      {"inf.exr", "channel 'back.dn' is inf at row 8, column 21"}));
+  EXPECT_FALSE(fs::exists(work / "v.npy"));
+}
+
+TEST_F(CliBodyTest, ImportOfABodyInCentimetresSuggestsTheUnits) {
+  const fs::path work = dir("work");
+  core::Mesh mesh = core::readMesh(body_ / "body.obj");
+  mesh.V *= 100;
+  core::writeMesh(work / "cm.obj", mesh);
+  nlohmann::json joints = jointsOf(body_);
+  for (auto& [name, p] : joints["joints"].items())
+    for (auto& c : p) c = c.get<double>() * 100;
+  writeFile(work / "joints.json", joints.dump());
+  EXPECT_TRUE(refused(runPixelcloth({"body", "--import", (work / "cm.obj").string(), "--joints",
+                                     (work / "joints.json").string(), "--out", (work / "out").string()}),
+                      {"cm.obj", "units tall", "expected 0.5 to 2.5 metres", "centimetres: scale it by 0.01"}));
+  EXPECT_FALSE(fs::exists(work / "out"));
+}
+
+TEST_F(CliBodyTest, ImportOfABodyWithAnExtraShellNeedsLargestComponent) {
+  const fs::path work = dir("work");
+  core::Mesh mesh = core::readMesh(body_ / "body.obj");
+  const int n = mesh.numVertices(), f = mesh.numFaces();
+  mesh.V.conservativeResize(n + 4, 3);  // a small closed tetrahedron in front of the face: a separately modelled eye
+  const Eigen::RowVector3d eye(0.03, mesh.V.col(1).maxCoeff() - 0.1, mesh.V.col(2).maxCoeff() + 0.02);
+  mesh.V.bottomRows(4) << eye, eye + Eigen::RowVector3d(0.01, 0, 0), eye + Eigen::RowVector3d(0, 0.01, 0),
+      eye + Eigen::RowVector3d(0, 0, 0.01);
+  mesh.F.conservativeResize(f + 4, 3);
+  mesh.F.bottomRows(4) << n, n + 2, n + 1, n, n + 1, n + 3, n, n + 3, n + 2, n + 1, n + 2, n + 3;
+  core::writeMesh(work / "eyes.obj", mesh);
+  writeFile(work / "joints.json", jointsOf(body_).dump());
+  EXPECT_TRUE(refused(runPixelcloth({"body", "--import", (work / "eyes.obj").string(), "--joints",
+                                     (work / "joints.json").string(), "--out", (work / "out").string()}),
+                      {"eyes.obj", "is closed but has 2 components", "--largest-component"}));
+  EXPECT_FALSE(fs::exists(work / "out"));
+  const CliRun run = runPixelcloth({"body", "--import", (work / "eyes.obj").string(), "--joints",
+                                    (work / "joints.json").string(), "--largest-component", "--out",
+                                    (work / "out").string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_NE(run.err.find("warning: " + (work / "eyes.obj").string() + ": kept the largest of 2 components"),
+            std::string::npos)
+      << run;
+  EXPECT_EQ(core::readMesh(work / "out" / "body.obj").numVertices(), n);
+}
+
+TEST_F(CliBodyTest, PoseBeyondTheJointLimitsIsRefusedOrClamped) {
+  const fs::path work = dir("work");
+  writeFile(work / "twist.json", R"({"joints": {"neck": {"euler_deg": [0, 80, 0]}}})");
+  EXPECT_TRUE(refused(runPixelcloth({"pose", "--body", body_.string(), "--pose", (work / "twist.json").string(),
+                                     "--out", (work / "out").string()}),
+                      {"twist.json", "joint 'neck'", "beyond its limits -60 to 60", "--clamp-to-limits"}));
+  EXPECT_TRUE(filesUnder(work / "out").empty());
+  const CliRun run = runPixelcloth({"--clamp-to-limits", "pose", "--body", body_.string(), "--pose",
+                                    (work / "twist.json").string(), "--out", (work / "out").string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_NE(run.err.find("clamped into the limits"), std::string::npos) << run;
+}
+
+TEST_F(CliBodyTest, DressGivenADatasetFolderPointsAtItsBodyFolder) {
+  const fs::path work = dir("work");
+  fs::create_directories(work / "data");
+  fs::copy(body_, work / "data" / "body", fs::copy_options::recursive);
+  EXPECT_TRUE(refused(runPixelcloth({"dress", "--body", (work / "data").string(), "--out", (work / "out").string()}),
+                      {"is not a body folder but holds one", (work / "data" / "body").string()}));
+  EXPECT_TRUE(filesUnder(work / "out").empty());
+}
+
+TEST_F(CliDatasetTest, DatasetFilesAreVerifiedWhenOpenedUnlessNoVerify) {
+  const fs::path data = work_ / "data";
+  ASSERT_EQ(import(work_ / "objs", work_ / "poses.csv", data).status, 0);
+  fs::copy(data, work_ / "damaged", fs::copy_options::recursive);
+  std::string bytes = readFile(data / "positions.npy");
+  bytes[bytes.size() - 5] ^= 0x40;
+  writeFile(work_ / "damaged" / "positions.npy", bytes);
+  EXPECT_TRUE(refused(runPixelcloth({"images", "--dataset", (work_ / "damaged").string(), "--samples", "0", "--out",
+                                     (work_ / "images").string()}),
+                      {"positions.npy", "CRC-32", "--no-verify"}));
+  EXPECT_TRUE(filesUnder(work_ / "images").empty());
+  const CliRun run = runPixelcloth({"--no-verify", "images", "--dataset", (work_ / "damaged").string(), "--samples",
+                                    "0", "--out", (work_ / "images").string(), "--quiet"});
+  EXPECT_EQ(run.status, 0) << run;
+
+  // A failed merge leaves neither its output folder nor a staging folder behind.
+  EXPECT_TRUE(refused(runPixelcloth({"dataset", "merge", "--out", (work_ / "merged").string(),
+                                     (work_ / "damaged").string()}),
+                      {"positions.npy", "CRC-32"}));
+  EXPECT_FALSE(fs::exists(work_ / "merged"));
+  for (const auto& entry : fs::directory_iterator(work_))
+    EXPECT_EQ(entry.path().filename().string().find("merging"), std::string::npos) << entry.path();
+}
+
+TEST_F(CliReconstructTest, MarkersFarFromTheBodyOrOfAnotherGarmentAreRefused) {
+  const fs::path markers = work_ / "m.json", pose = work_ / "pose.json";
+  ASSERT_EQ(runPixelcloth({"markers", "--dataset", data_.string(), "--sample", "1", "--pose-out", pose.string(),
+                           "--out", markers.string()})
+                .status,
+            0);
+  nlohmann::json set = nlohmann::json::parse(readFile(markers));
+  const std::string name = set["markers"][2]["name"];
+  set["markers"][2]["position"] = {1e30, 0, 0};
+  writeFile(work_ / "far.json", set.dump());
+  EXPECT_TRUE(refused(runPixelcloth({"reconstruct", "--markers", (work_ / "far.json").string(), "--pose",
+                                     pose.string(), "--dressing", (work_ / "dressing").string(), "--out",
+                                     (work_ / "far.obj").string()}),
+                      {"far.json", "marker '" + name + "' is 1e+30 m from where its garment vertex rests",
+                       "expected within 1 m"}));
+  EXPECT_FALSE(fs::exists(work_ / "far.obj"));
+
+  // The necktie's markers with a T-shirt's dressing folder.
+  const fs::path shirtDressing = work_ / "shirt_dressing";
+  fs::create_directories(shirtDressing);
+  fs::copy(body_, shirtDressing / "body", fs::copy_options::recursive);
+  const core::Mesh body = core::readMesh(body_ / "body.obj");
+  const garment::Garment shirt = garment::makeTShirt();
+  const Eigen::MatrixX3d u = Eigen::RowVector3d(1, 0, 0).replicate(shirt.mesh.numVertices(), 1);
+  garment::saveEmbedding(shirtDressing, garment::embedClosest(body.V, body.F, shirt.mesh.V, u));
+  core::writeNpy(shirtDressing / "rest_positions.npy", Eigen::MatrixXd(shirt.mesh.V));
+  EXPECT_TRUE(refused(runPixelcloth({"reconstruct", "--markers", markers.string(), "--pose", pose.string(),
+                                     "--dressing", shirtDressing.string(), "--out", (work_ / "mixed.obj").string()}),
+                      {"rest_positions.npy", "m.json", "necktie", "the garments differ"}));
+  EXPECT_FALSE(fs::exists(work_ / "mixed.obj"));
 }
 
 }  // namespace

@@ -352,6 +352,51 @@ TEST(Import, OpenMeshIsRefusedWithAClearMessage) {
   }
 }
 
+TEST(Import, ABodyInOtherUnitsIsRefusedWithTheUnitsItSeemsToBeIn) {
+  auto [mesh, joints] = aPosedMannequin();
+  mesh.V *= 100;  // centimetres
+  for (auto& [name, p] : joints) p *= 100;
+  const std::string message = pixelcloth::testing::inputErrorOf([&] { pb::importBody(mesh, joints, "scan.obj"); });
+  EXPECT_NE(message.find("scan.obj: the body is 1"), std::string::npos) << message;
+  EXPECT_NE(message.find("expected 0.5 to 2.5 metres"), std::string::npos) << message;
+  EXPECT_NE(message.find("centimetres: scale it by 0.01"), std::string::npos) << message;
+}
+
+TEST(Import, ExtraShellsAreRefusedUnlessTheLargestComponentIsKept) {
+  auto [mesh, joints] = aPosedMannequin();
+  const int n = mesh.numVertices(), f = mesh.numFaces();
+  // A closed tetrahedron beside the head, as a separately modelled eye would be.
+  pc::Mesh eye = mesh;
+  eye.V.conservativeResize(n + 4, 3);
+  const Eigen::RowVector3d at = mesh.V.colwise().maxCoeff() - Eigen::RowVector3d(0.3, 0.1, 0.1);
+  eye.V.bottomRows(4) << at, at + Eigen::RowVector3d(0.01, 0, 0), at + Eigen::RowVector3d(0, 0.01, 0),
+      at + Eigen::RowVector3d(0, 0, 0.01);
+  eye.F.conservativeResize(f + 4, 3);
+  eye.F.bottomRows(4) << n, n + 2, n + 1, n, n + 1, n + 3, n, n + 3, n + 2, n + 1, n + 2, n + 3;
+  std::string message = pixelcloth::testing::inputErrorOf([&] { pb::importBody(eye, joints, "scan.obj"); });
+  EXPECT_NE(message.find("is closed but has 2 components"), std::string::npos) << message;
+  EXPECT_NE(message.find("--largest-component"), std::string::npos) << message;
+
+  // An open shell: the open edges are named on their component, vertices counted from 1.
+  pc::Mesh open = eye;
+  open.F.conservativeResize(f + 3, 3);
+  message = pixelcloth::testing::inputErrorOf([&] { pb::importBody(open, joints, "scan.obj"); });
+  EXPECT_NE(message.find("on component 2 of 2 (3 faces; the largest has " + std::to_string(f) + ")"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("--largest-component"), std::string::npos) << message;
+  EXPECT_TRUE(message.find("(" + std::to_string(n + 1)) != std::string::npos ||
+              message.find("(" + std::to_string(n + 2)) != std::string::npos ||
+              message.find("(" + std::to_string(n + 3)) != std::string::npos)
+      << "expected the shell's vertices " << n + 1 << " to " << n + 4 << ", counted from 1: " << message;
+
+  pb::ImportOptions options;
+  options.largestComponent = true;
+  const pb::Body kept = pb::importBody(open, joints, "scan.obj", options);
+  EXPECT_EQ(kept.mesh.numVertices(), n);
+  EXPECT_EQ(kept.mesh.numFaces(), f);
+}
+
 TEST(Import, NonManifoldMeshIsRefused) {
   auto [mesh, joints] = aPosedMannequin();
   pc::Mesh bad = mesh;

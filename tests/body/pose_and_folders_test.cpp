@@ -74,7 +74,7 @@ TEST(BodyFolder, BrokenFilesAreNamed) {
   Eigen::MatrixXf w = coarseMannequin().weights.cast<float>();
   w(7, 0) += 0.5f;
   pc::writeNpy(dir / "weights.npy", w);
-  expectError([&] { pb::loadBody(dir); }, {"vertex 7", "sum"});
+  expectError([&] { pb::loadBody(dir); }, {"vertex 8", "sum"});  // row 7 counted from 1
 }
 
 TEST(PoseJson, BothFormsAndTheRoundTrip) {
@@ -113,4 +113,20 @@ TEST(PoseJson, MistakesAreNamed) {
       {"scaled.json", "not a rotation"});
   expectError([&] { pb::readPose(write("neither.json", {{"angles", 3}})); }, {"neither.json", "'pose'"});
   expectError([&] { pb::readPose(dir / "missing.json"); }, {"missing.json"});
+}
+
+TEST(PoseJson, AnglesBeyondTheJointLimitsAreRefusedOrClamped) {
+  fs::path dir = pixelcloth::testing::freshDir("pose");
+  // The neck turns at most 60 degrees (AAOS); 80 is beyond.
+  pc::writeJson(dir / "twisted.json", {{"joints", {{"neck", {{"euler_deg", {0, 80, 0}}}}}}});
+  expectError([&] { pb::readPose(dir / "twisted.json"); },
+              {"twisted.json", "joint 'neck'", "y = 80", "beyond its limits -60 to 60", "--clamp-to-limits"});
+  pb::setClampPosesToLimits(true);
+  const pb::Pose clamped = pb::readPose(dir / "twisted.json");
+  pb::setClampPosesToLimits(false);
+  EXPECT_TRUE(clamped.withinLimits(1e-6));
+  EXPECT_NEAR(clamped.toEulerDegrees()(3, 1), 60, 1e-6);
+  // A pose at its limits exactly, as the sampler draws them, reads as it is.
+  pc::writeJson(dir / "edge.json", {{"joints", {{"neck", {{"euler_deg", {0, 60, 0}}}}}}});
+  EXPECT_NEAR(pb::readPose(dir / "edge.json").toEulerDegrees()(3, 1), 60, 1e-4);
 }

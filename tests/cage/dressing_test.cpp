@@ -139,6 +139,8 @@ TEST(Dressing, RelaxationShrinksTheSpreadOfAreaRatiosAndConverges) {
   EXPECT_LT(d.relaxIterations, options.maxRelaxIterations);
   EXPECT_GT(d.relaxIterations, 0);
   EXPECT_LT(d.relaxResidual, options.relaxTolerance);
+  EXPECT_TRUE(d.relaxConverged);
+  EXPECT_EQ(d.summary().find("cap"), std::string::npos) << d.summary();
   // Every free vertex stays on the body, `clearance` outside it.
   const pg::Embedding& e = d.embedding;
   const pg::EmbeddedFrames frames = pg::embeddedFrames(coarseMannequin().mesh.V, coarseMannequin().mesh.F, e);
@@ -266,3 +268,13 @@ TEST(Dressing, RefusesCagesThatDoNotFitTheMeshes) {
 }
 
 }  // namespace
+
+TEST(Dressing, ARelaxationStoppedAtItsCapSaysSo) {
+  pcg::DressingOptions options;
+  options.maxRelaxIterations = 2;
+  const pcg::Dressing d =
+      pcg::dressGarment(coarseMannequin(), dressedShirt().bodyCage, tshirt(), dressedShirt().shirtCage, options);
+  EXPECT_EQ(d.relaxIterations, 2);
+  EXPECT_FALSE(d.relaxConverged);
+  EXPECT_NE(d.summary().find("2 sweeps, stopped at the cap before settling"), std::string::npos) << d.summary();
+}

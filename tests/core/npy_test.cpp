@@ -4,12 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <string>
 
 #include "pixelcloth/core/atomic_file.h"
@@ -137,6 +140,21 @@ TEST(Npy, MatrixDtypeAndShapeAreChecked) {
   pc::NpyArray array = pc::readNpy(dir / "weights.npy");
   EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { array.data<std::int64_t>(); }),
             file + ": dtype <f8, expected int64 <i8");
+}
+
+TEST(Npy, MatricesWithNanOrInfinityAreRefusedAtTheFirstBadValue) {
+  fs::path dir = pixelcloth::testing::freshDir("nonfinite");
+  Eigen::MatrixXf offsets = Eigen::MatrixXf::Ones(6, 3);
+  offsets(4, 1) = std::numeric_limits<float>::quiet_NaN();
+  offsets(5, 0) = std::numeric_limits<float>::infinity();
+  pc::writeNpy(dir / "values.npy", offsets);
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::readNpyMatrixF(dir / "values.npy", 6, 3); }),
+            (dir / "values.npy").string() + ": row 5, column 2 (counting from 1) is nan; expected finite numbers");
+  Eigen::MatrixXd infinite = Eigen::MatrixXd::Zero(2, 2);
+  infinite(1, 1) = -std::numeric_limits<double>::infinity();
+  pc::writeNpy(dir / "d.npy", infinite);
+  EXPECT_NE(pixelcloth::testing::inputErrorOf([&] { pc::readNpyMatrixD(dir / "d.npy"); }).find("row 2, column 2"),
+            std::string::npos);
 }
 
 TEST(Npy, MalformedFilesAreRefusedWithTheirFault) {

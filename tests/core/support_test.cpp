@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
@@ -138,6 +139,34 @@ TEST(Topology, ClosedTetrahedronAndItsFaults) {
   EXPECT_GT(pc::checkTopology(4, flipped).inconsistentEdges, 0);
 }
 
+TEST(Topology, ComponentsAreRankedBySizeAndTheProblemsOneNamed) {
+  // A closed tetrahedron (vertices 1-4, counted from 1) and a lone triangle (vertices 5-7): two components.
+  pc::Mesh mesh;
+  mesh.V.resize(7, 3);
+  mesh.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 5, 5, 5, 6, 5, 5, 5, 6, 5;
+  mesh.F.resize(5, 3);
+  mesh.F << 4, 5, 6, 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  mesh.vertexAttributes["w"] = Eigen::VectorXd::LinSpaced(7, 0, 6);
+  mesh.faceAttributes["id"] = Eigen::VectorXi::LinSpaced(5, 0, 4);
+  const pc::TopologyReport report = pc::checkTopology(7, mesh.F);
+  EXPECT_EQ(report.components, 2);
+  EXPECT_EQ(report.componentFaces, (std::vector<int>{4, 1}));
+  EXPECT_EQ(report.boundaryEdges, 3);
+  EXPECT_EQ(report.firstProblemComponent, 2);  // the triangle's edges are the open ones
+  // Its vertices are 5 to 7 counted from 1 (4 to 6 from 0).
+  EXPECT_TRUE(std::regex_search(report.firstProblem, std::regex("edge \\([567], [567]\\)"))) << report.firstProblem;
+  EXPECT_EQ(pc::faceComponents(7, mesh.F), (std::vector<int>{1, 0, 0, 0, 0}));
+
+  const pc::Mesh kept = pc::largestComponent(mesh);
+  ASSERT_EQ(kept.numVertices(), 4);
+  ASSERT_EQ(kept.numFaces(), 4);
+  EXPECT_TRUE(pc::checkTopology(4, kept.F).closedManifold());
+  EXPECT_EQ(kept.V, mesh.V.topRows(4));
+  EXPECT_EQ(kept.F, mesh.F.bottomRows(4));
+  EXPECT_EQ(kept.vertexAttributes.at("w"), Eigen::VectorXd::LinSpaced(4, 0, 3));
+  EXPECT_EQ(kept.faceAttributes.at("id"), Eigen::VectorXi::LinSpaced(4, 1, 4));
+}
+
 TEST(Mesh, ValidateNamesTheFault) {
   pc::Mesh mesh;
   mesh.V = Eigen::MatrixX3d::Zero(3, 3);
@@ -149,7 +178,7 @@ TEST(Mesh, ValidateNamesTheFault) {
     mesh.validate("garment.obj");
     FAIL();
   } catch (const pc::InputError& e) {
-    EXPECT_STREQ(e.what(), "garment.obj: face 0 uses vertex 5, but the mesh has 3 vertices");
+    EXPECT_STREQ(e.what(), "garment.obj: face 1 uses vertex 6, but the mesh has 3 vertices");  // counted from 1
   }
   mesh.F << 0, 1, 2;
   mesh.V(2, 2) = std::numeric_limits<double>::quiet_NaN();

@@ -358,8 +358,13 @@ TEST(DatasetMerge, ShardsMergeToTheUnshardedArrays) {
     f.seekp(1000);
     f.put('\x55');
   }
-  const std::string crc = inputErrorOf([&] { pd::mergeDatasets({shards[0], damaged, shards[2]}, freshDir("crc")); });
+  const fs::path crcOut = freshDir("crc");
+  const std::string crc = inputErrorOf([&] { pd::mergeDatasets({shards[0], damaged, shards[2]}, crcOut); });
   EXPECT_NE(crc.find("positions.npy: CRC-32"), std::string::npos) << crc;
+  // Nothing half-written: the output folder is as it was (empty), and no staging folder is left beside it.
+  EXPECT_TRUE(fs::is_empty(crcOut));
+  for (const auto& entry : fs::directory_iterator(crcOut.parent_path()))
+    EXPECT_EQ(entry.path().filename().string().find("crc.merging-"), std::string::npos) << entry.path();
   const std::string notEmpty = inputErrorOf([&] { pd::mergeDatasets(shards, merged); });
   EXPECT_NE(notEmpty.find("not empty"), std::string::npos) << notEmpty;
 }
@@ -393,6 +398,32 @@ TEST_F(DatasetCheck, CatchesAFlippedByte) {
   f.close();
   const std::string message = inputErrorOf([&] { pd::checkDataset(folder); });
   EXPECT_NE(message.find("offsets.npy: CRC-32"), std::string::npos) << message;
+}
+
+TEST_F(DatasetCheck, OpeningVerifiesEveryFileReadUnlessTurnedOff) {
+  const fs::path folder = copy("opened");
+  auto flip = [&](const fs::path& file, std::streamoff at) {
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekg(at);
+    const char c = static_cast<char>(f.get());
+    f.seekp(at);
+    f.put(static_cast<char>(c ^ 0x10));
+  };
+  flip(folder / "offsets.npy", 500);
+  std::string message = inputErrorOf([&] { pd::openDataset(folder); });
+  EXPECT_NE(message.find((folder / "offsets.npy").string() + ": CRC-32"), std::string::npos) << message;
+  EXPECT_NE(message.find("--no-verify"), std::string::npos) << message;
+  pd::setVerifyDatasetFiles(false);
+  EXPECT_EQ(pd::openDataset(folder).rows(), 6);  // read as it is
+  pd::setVerifyDatasetFiles(true);
+
+  const fs::path other = copy("opened_body");
+  flip(other / "body" / "weights.npy", 300);
+  message = inputErrorOf([&] { pd::loadDatasetBody(other); });
+  EXPECT_NE(message.find("weights.npy: CRC-32"), std::string::npos) << message;
+  flip(other / "rest_positions.npy", 200);
+  message = inputErrorOf([&] { pd::loadDatasetRestPositions(other, setup().garment.mesh.numVertices()); });
+  EXPECT_NE(message.find("rest_positions.npy: CRC-32"), std::string::npos) << message;
 }
 
 TEST_F(DatasetCheck, CatchesAWrongShape) {

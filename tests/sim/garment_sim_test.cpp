@@ -50,6 +50,15 @@ TEST_F(TShirtSimulation, RestDrapeSettlesWithoutDistortionOrPenetration) {
   EXPECT_LT(rest.maxPenetration, 0.002);
   EXPECT_GT(rest.minAreaRatio, 0.7);
   EXPECT_LT(rest.maxAreaRatio, 1.6);
+  EXPECT_TRUE(simulator_->restSettled());
+}
+
+TEST_F(TShirtSimulation, ARestSettleStoppedAtItsCapIsNotSettled) {
+  SimulationOptions options;
+  options.restIterations = 2;
+  const GarmentSimulator capped(*body_, *shirt_, *dressing_, options);
+  EXPECT_EQ(capped.restStats().iterations, 2);
+  EXPECT_FALSE(capped.restSettled());
 }
 
 TEST_F(TShirtSimulation, LoweredArmsCarryTheirSleevesAndASampleDependsOnlyOnItsPose) {

@@ -88,6 +88,7 @@ void writeDressingFolder(const body::Body& body, const garment::Garment& garment
                                     {"max_penetration_m", dressing.maxPenetration},
                                     {"inside_after_relaxation", insideAfter},
                                     {"relax_iterations", dressing.relaxIterations},
+                                    {"relax_converged", dressing.relaxConverged},
                                     {"relax_residual_m", dressing.relaxResidual},
                                     {"area_ratio_before", ratioStats(dressing.areaRatioBefore)},
                                     {"area_ratio_after", ratioStats(dressing.areaRatioAfter)},

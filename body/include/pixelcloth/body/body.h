@@ -90,11 +90,21 @@ JointPositions posedJoints(const Body& body, const Pose& pose);
 /// the top level. Required: the 10 posable joints; optional: root, head, l_hand, r_hand (hand tips).
 JointPositions readJointPositions(const std::filesystem::path& path);
 
-/// Imports a body: `mesh` closed and manifold (else InputError naming `context`), standing in a T- or
+/// Options of importBody.
+struct ImportOptions {
+  /// Keep only the mesh's largest component (most faces), dropping separate shells such as eyes, teeth or
+  /// accessories that downloaded human models often have. Without it a mesh of several components is refused.
+  bool largestComponent = false;
+};
+
+/// Imports a body: `mesh` in metres (its bounding box's largest side 0.5 to 2.5 m, else InputError suggesting the
+/// units it seems to be in), one closed manifold component (else InputError naming `context`, the first problem's
+/// vertices counted from 1 and the component it is on; see ImportOptions::largestComponent), standing in a T- or
 /// A-pose, joints inside the mesh. Fits the skeleton (missing optional joints estimated from the mesh),
 /// computes bone-heat weights, and brings arms that hang below the horizontal into the T-pose by
 /// rotating the arm joints; returns the body in its T-pose.
-Body importBody(const core::Mesh& mesh, const JointPositions& joints, const std::string& context = "body");
+Body importBody(const core::Mesh& mesh, const JointPositions& joints, const std::string& context = "body",
+                const ImportOptions& options = {});
 
 /// Writes a body folder: body.obj, skeleton.json (joints, parents, rest positions, bone ends, limits,
 /// pose order), weights.npy (#V x #J float32), parts.json. Each file atomically.

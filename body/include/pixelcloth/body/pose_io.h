@@ -14,7 +14,13 @@ namespace pixelcloth::body {
 ///   {"joints": {"l_arm": {"euler_deg": [x, y, z]}, "neck": {"rotation": [9 numbers]}, ...}}
 /// Joints left out stay at rest. Unknown joints, wrong counts, non-finite numbers and matrices that
 /// are not rotations are refused with the file and joint named.
+/// Joint angles beyond their limits (jointLimits(), Euler angles as Pose::toEulerDegrees gives them) are refused,
+/// the joint, angle and limit named, unless setClampPosesToLimits(true): then they are clamped with a warning.
 Pose readPose(const std::filesystem::path& path);
+
+/// What readPose does with angles beyond their joints' limits, for the process: refuse (false, the default) or
+/// clamp into them (true; the CLI's --clamp-to-limits).
+void setClampPosesToLimits(bool clamp);
 
 /// Parses the same forms from an already-read JSON value; `context` names its origin in messages.
 Pose poseFromJson(const nlohmann::json& json, const std::string& context);

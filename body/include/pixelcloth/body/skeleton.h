@@ -78,6 +78,11 @@ struct Pose {
   Eigen::Matrix<double, 10, 3> toEulerDegrees() const;
   /// True when every joint's Euler angles lie within its limits (with `slackDegrees` tolerance).
   bool withinLimits(double slackDegrees = 1e-6) const;
+  /// The first Euler angle beyond its joint's limit (by more than `slackDegrees`), for a message: "joint 'l_arm':
+  /// z = 120 degrees, beyond its limits -90 to 90 (AAOS ...)"; empty when every angle is within.
+  std::string limitViolation(double slackDegrees = 0.05) const;
+  /// Every joint's Euler angles clamped into its limits.
+  Pose clampedToLimits() const;
 };
 
 /// World transforms of every joint for a pose: `rotations[j]` and `positions.row(j)`.

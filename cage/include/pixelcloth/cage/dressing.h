@@ -45,6 +45,7 @@ struct Dressing {
   double maxPenetration = 0;        ///< deepest vertex of `morphed` inside the body (metres; 0 when none)
   int relaxIterations = 0;
   double relaxResidual = 0;  ///< largest vertex move of the last sweep (metres)
+  bool relaxConverged = true;  ///< false when the sweeps stopped at DressingOptions::maxRelaxIterations, still moving
   /// One line, e.g. "412 cage vertices, 37 pushed out (max 1.2 cm deep), 180 sweeps (residual 1.9e-05 m), log2 area
   /// ratio 5-95% [-0.61, 0.40] -> [-0.22, 0.18]".
   std::string summary() const;

@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace pixelcloth::core {
 
@@ -47,7 +48,11 @@ struct TopologyReport {
   int nonManifoldVertices = 0;  ///< vertices whose faces do not form one fan
   int isolatedVertices = 0;     ///< vertices used by no face
   int components = 0;           ///< connected components of faces
+  /// The first problem found, vertices counted from 1 as in an OBJ file ("edge (12, 13) is on a boundary ...").
   std::string firstProblem;
+  /// Which component it is on: 1 the largest (most faces), 2 the next...; 0 when there is no problem.
+  int firstProblemComponent = 0;
+  std::vector<int> componentFaces;  ///< faces of each component, largest first
   bool closedManifold() const {
     return boundaryEdges == 0 && nonManifoldEdges == 0 && inconsistentEdges == 0 && nonManifoldVertices == 0;
   }
@@ -55,6 +60,14 @@ struct TopologyReport {
 
 /// Checks whether (V, F) is a closed, consistently oriented 2-manifold.
 TopologyReport checkTopology(int numVertices, const Eigen::MatrixX3i& F);
+
+/// Each face's connected component (faces joined through shared vertices), numbered 0 for the largest (most faces),
+/// 1 for the next, and so on.
+std::vector<int> faceComponents(int numVertices, const Eigen::MatrixX3i& F);
+
+/// The mesh's largest component alone (most faces): the other components' faces and every vertex no kept face uses
+/// are dropped, the vertices renumbered in their old order; attributes and texture coordinates follow.
+Mesh largestComponent(const Mesh& mesh);
 
 /// Signed volume enclosed by a closed mesh (positive when faces are oriented outwards), m^3.
 double enclosedVolume(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);

@@ -177,6 +177,16 @@ struct DatasetInfo {
 /// Reads manifest.json of `folder`; throws `InputError` naming the file and field when it is missing or malformed.
 DatasetInfo readDatasetInfo(const std::filesystem::path& folder);
 
+/// Whether the readers below check each dataset file they open against manifest.json's size and CRC-32 before
+/// using it (on by default; CRC-32 streams at GB/s, about a second per GB). The CLI's `--no-verify` turns it off for
+/// the process. A file the manifest does not list is read unchecked.
+void setVerifyDatasetFiles(bool verify);
+bool verifyDatasetFiles();
+
+/// When verification is on: throws `InputError` naming `info.folder / name` when its size or CRC-32 differs from
+/// the manifest's (a damaged or changed file).
+void verifyDatasetFile(const DatasetInfo& info, const std::string& name);
+
 /// A finished dataset in memory. Row r of every array is sample index settings.first() + r.
 struct Dataset {
   DatasetInfo info;
@@ -194,10 +204,12 @@ struct Dataset {
   std::vector<int> rowsOf(Split split) const;
 };
 
-/// Reads a finished dataset (manifest and the four arrays, shapes and dtypes checked against the manifest).
+/// Reads a finished dataset (manifest and the four arrays, shapes and dtypes checked against the manifest; the arrays
+/// verified against their checksums, see verifyDatasetFiles()).
 Dataset openDataset(const std::filesystem::path& folder);
 
-/// The dataset's body (body/), embedding (embedding_*.npy, checked against the body's faces) and rest positions.
+/// The dataset's body (body/), embedding (embedding_*.npy, checked against the body's faces) and rest positions, each
+/// file verified against the manifest's checksums first (verifyDatasetFiles()).
 body::Body loadDatasetBody(const std::filesystem::path& folder);
 garment::Embedding loadDatasetEmbedding(const std::filesystem::path& folder, int numBodyFaces);
 Eigen::MatrixX3d loadDatasetRestPositions(const std::filesystem::path& folder, int vertexCount);

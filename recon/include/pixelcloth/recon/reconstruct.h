@@ -94,11 +94,20 @@ class GarmentReconstructor {
   GarmentReconstructor(const GarmentReconstructor&) = delete;
   GarmentReconstructor& operator=(const GarmentReconstructor&) = delete;
 
-  /// Rebuilds the garment worn in `pose` from `markers` (positions required; checked against the garment and cage).
+  /// Rebuilds the garment worn in `pose` from `markers` (positions required; checked against the garment and cage,
+  /// and each within kMaxMarkerDistance of where its vertex rests on the posed body). `context` (a file name) starts
+  /// the messages.
   Reconstruction reconstruct(const cage::MarkerSet& markers, const body::Pose& pose,
-                             ReconstructionMethod method = ReconstructionMethod::Spline) const;
+                             ReconstructionMethod method = ReconstructionMethod::Spline,
+                             const std::string& context = "markers") const;
   /// The same on a posed body made once for the frame (`posed`), to share it between methods.
-  Reconstruction reconstruct(const cage::MarkerSet& markers, const PosedBody& body, ReconstructionMethod method) const;
+  Reconstruction reconstruct(const cage::MarkerSet& markers, const PosedBody& body, ReconstructionMethod method,
+                             const std::string& context = "markers") const;
+
+  /// How far a marker may be from where its garment vertex rests on the posed body (the embedding's point), metres:
+  /// a garment hangs centimetres from the body, never a metre; beyond it the markers are in other units or of
+  /// another pose.
+  static constexpr double kMaxMarkerDistance = 1.0;
   /// The procedural fill alone: cage positions (#V x 3, only cage rows read) -> offsets -> every patch's interior ->
   /// positions (kept ReconstructionOptions::bodyClearance out of the body).
   Reconstruction fillFromCage(const Eigen::MatrixX3d& cagePositions, const PosedBody& body, bool anisotropic) const;

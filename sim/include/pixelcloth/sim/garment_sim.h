@@ -58,6 +58,8 @@ class GarmentSimulator {
   const Eigen::MatrixX3d& restDrape() const { return rest_; }
   /// Statistics of the rest settle.
   const data::SampleStats& restStats() const { return restStats_; }
+  /// False when the rest settle stopped at SimulationOptions::restIterations with vertices still moving.
+  bool restSettled() const { return restSettled_; }
 
  private:
   void placeBody(const body::Pose& pose);
@@ -74,6 +76,7 @@ class GarmentSimulator {
   Eigen::MatrixX3d rest_;
   Eigen::MatrixX3d posedBody_;
   data::SampleStats restStats_;
+  bool restSettled_ = true;
 };
 
 }  // namespace pixelcloth::sim

@@ -46,7 +46,7 @@ TEST(Assemble, MeanOverTheNetworksThatPredictAVertex) {
 
 TEST(Assemble, RefusesAGarmentWithUncoveredVertices) {
   const std::string message = inputErrorOf([] { ps::assembleMean(overlapping(), 5); });
-  EXPECT_NE(message.find("vertex 4"), std::string::npos) << message;
+  EXPECT_NE(message.find("vertex 5"), std::string::npos) << message;  // the fifth, counted from 1
 }
 
 /// The T-shirt's 28 patch predictions of one sample, each patch's values the constant `value(patch id)` on every

@@ -71,3 +71,19 @@ TEST(JsonIo, RequiredFieldsSayWhatIsMissingOrWrong) {
                 [&] { pc::requireField(manifest["splits"], "train", "manifest.json: splits"); }),
             "manifest.json: splits: expected a JSON object, found array");
 }
+
+// Found reading the readers for the fuzz targets (docs/reliability.md): nlohmann's get<int> wraps an out-of-range
+// integer modulo 2^32, so "rows": 4294967300 was read as 4 and "crc32": -1 as 4294967295.
+TEST(JsonIo, IntegersOutOfTheTypesRangeAreRefusedNotWrapped) {
+  const json j = json::parse(R"({"rows": 4294967300, "crc32": -1, "big": 18446744073709551615, "ok": 7,
+                                 "list": [1, 4294967297]})");
+  auto refusal = [&](const std::function<void()>& read) { return pixelcloth::testing::inputErrorOf(read); };
+  const std::string rows = refusal([&] { pc::requireValue<int>(j, "rows", "manifest.json"); });
+  EXPECT_NE(rows.find("manifest.json: field 'rows' is 4294967300, out of the range"), std::string::npos) << rows;
+  EXPECT_NE(refusal([&] { pc::requireValue<std::uint32_t>(j, "crc32", "m.json"); }).find("'crc32'"), std::string::npos);
+  EXPECT_NE(refusal([&] { pc::requireValue<std::int64_t>(j, "big", "m.json"); }).find("'big'"), std::string::npos);
+  EXPECT_NE(refusal([&] { pc::requireValue<std::vector<int>>(j, "list", "m.json"); }).find("entry 1"), std::string::npos);
+  EXPECT_EQ(pc::requireValue<std::uint64_t>(j, "big", "m.json"), 18446744073709551615ULL);
+  EXPECT_EQ(pc::requireValue<int>(j, "ok", "m.json"), 7);
+  EXPECT_EQ(pc::requireValue<std::uint32_t>(j, "ok", "m.json"), 7u);
+}

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -44,6 +45,21 @@ const char* jsonKindOf() {
   if constexpr (std::is_convertible_v<T, std::string>) return "a string";
   return "a value of another type";
 }
+
+/// Whether `value` is an integer that U holds. nlohmann's get<U> converts out-of-range integers modulo 2^bits
+/// ("rows": 4294967300 read as 4, "crc32": -1 as 4294967295), so the range is checked first.
+template <typename U>
+bool integerFits(const nlohmann::json& value) {
+  if (!value.is_number_integer()) return false;
+  if (value.is_number_unsigned()) return value.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<U>::max());
+  const std::int64_t v = value.get<std::int64_t>();
+  if constexpr (std::is_signed_v<U>) {
+    return v >= static_cast<std::int64_t>(std::numeric_limits<U>::min()) &&
+           v <= static_cast<std::int64_t>(std::numeric_limits<U>::max());
+  } else {
+    return v >= 0 && static_cast<std::uint64_t>(v) <= static_cast<std::uint64_t>(std::numeric_limits<U>::max());
+  }
+}
 }  // namespace detail
 
 /// `object[key]` converted to T (a number, bool, string, or anything nlohmann::json converts to); throws
@@ -51,7 +67,13 @@ const char* jsonKindOf() {
 template <typename T>
 T requireValue(const nlohmann::json& object, const std::string& key, const std::string& context) {
   const nlohmann::json& field = requireField(object, key, context);
-  const bool integerWanted = std::is_integral_v<T> && !std::is_same_v<T, bool>;
+  constexpr bool integerWanted = std::is_integral_v<T> && !std::is_same_v<T, bool>;
+  if constexpr (integerWanted) {
+    PIXELCLOTH_CHECK(!field.is_number_integer() || detail::integerFits<T>(field),
+                     context << ": field '" << key << "' is " << field.dump() << ", out of the range of "
+                             << detail::jsonKindOf<T>() << " (" << +std::numeric_limits<T>::min() << " to "
+                             << +std::numeric_limits<T>::max() << ")");
+  }
   PIXELCLOTH_CHECK(!integerWanted || field.is_number_integer(),
                    context << ": field '" << key << "' is " << (field.is_number() ? "" : "a ") << field.type_name()
                            << " " << field.dump() << ", expected " << detail::jsonKindOf<T>());
@@ -62,8 +84,7 @@ T requireValue(const nlohmann::json& object, const std::string& key, const std::
     if constexpr (std::is_integral_v<U> && !std::is_same_v<U, bool>) {
       for (size_t i = 0; i < field.size(); ++i) {
         const nlohmann::json& item = field[i];
-        PIXELCLOTH_CHECK(item.is_number_integer() && item.get<long long>() >= std::numeric_limits<U>::min() &&
-                             item.get<long long>() <= std::numeric_limits<U>::max(),
+        PIXELCLOTH_CHECK(detail::integerFits<U>(item),
                          context << ": field '" << key << "' entry " << i << " is " << item.dump() << ", expected "
                                  << detail::jsonKindOf<T>());
       }

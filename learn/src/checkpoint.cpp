@@ -151,8 +151,11 @@ void loadCheckpoint(const fs::path& path, const nlohmann::json& signature, torch
   } catch (const c10::Error& e) {
     PIXELCLOTH_FAIL(path.string() << ": a damaged training checkpoint: " << firstLine(e));
   }
+  // The records are read through data_ptr<double> and item<double>: a float32 or a 2-D "best" would have escaped as
+  // LibTorch's c10::Error instead of naming the file.
   PIXELCLOTH_CHECK(shapesOf(net) == expected && records.dim() == 2 && records.size(1) == kRecordFields &&
-                       best.numel() == 2,
+                       records.scalar_type() == torch::kFloat64 && best.dim() == 1 && best.numel() == 2 &&
+                       best.scalar_type() == torch::kFloat64,
                    path.string() << ": a training checkpoint whose tensors do not fit this model");
   report.epochs.clear();
   const torch::Tensor r = records.contiguous();

@@ -48,22 +48,29 @@ bool oneBlock(int inChannels, int block, int outChannels) {
 /// Sixteen floats, one AVX-512 register or two AVX2 ones as the function's target decides.
 typedef float Vec16 __attribute__((vector_size(64), aligned(4)));
 typedef std::int32_t Mask16 __attribute__((vector_size(64), aligned(4)));
+// Two vectors' lanes picked by constant indices: GCC's __builtin_shuffle takes them as a mask vector, clang's
+// __builtin_shufflevector as arguments (clang builds learn/ for the fuzz targets, scripts/run fuzz).
+#if defined(__clang__)
+#define PIXELCLOTH_SHUFFLE(a, b, ...) __builtin_shufflevector(a, b, __VA_ARGS__)
+#else
+#define PIXELCLOTH_SHUFFLE(a, b, ...) __builtin_shuffle(a, b, Mask16{__VA_ARGS__})
+#endif
 
 /// out[p] = bias + the sum of a[p]'s lanes, for p < 16. Each level adds the two halves
 /// of neighbouring vectors' partial sums, keeping the pixels in order: 8, 4, 2, then 1 lane per pixel.
 __attribute__((always_inline)) inline void laneSums(const Vec16* a, float bias, float* out) {
   Vec16 u[8], v[4], w[2];
   for (int i = 0; i < 8; ++i)
-    u[i] = __builtin_shuffle(a[2 * i], a[2 * i + 1], Mask16{0, 1, 2, 3, 4, 5, 6, 7, 16, 17, 18, 19, 20, 21, 22, 23}) +
-           __builtin_shuffle(a[2 * i], a[2 * i + 1], Mask16{8, 9, 10, 11, 12, 13, 14, 15, 24, 25, 26, 27, 28, 29, 30, 31});
+    u[i] = PIXELCLOTH_SHUFFLE(a[2 * i], a[2 * i + 1], 0, 1, 2, 3, 4, 5, 6, 7, 16, 17, 18, 19, 20, 21, 22, 23) +
+           PIXELCLOTH_SHUFFLE(a[2 * i], a[2 * i + 1], 8, 9, 10, 11, 12, 13, 14, 15, 24, 25, 26, 27, 28, 29, 30, 31);
   for (int j = 0; j < 4; ++j)
-    v[j] = __builtin_shuffle(u[2 * j], u[2 * j + 1], Mask16{0, 1, 2, 3, 8, 9, 10, 11, 16, 17, 18, 19, 24, 25, 26, 27}) +
-           __builtin_shuffle(u[2 * j], u[2 * j + 1], Mask16{4, 5, 6, 7, 12, 13, 14, 15, 20, 21, 22, 23, 28, 29, 30, 31});
+    v[j] = PIXELCLOTH_SHUFFLE(u[2 * j], u[2 * j + 1], 0, 1, 2, 3, 8, 9, 10, 11, 16, 17, 18, 19, 24, 25, 26, 27) +
+           PIXELCLOTH_SHUFFLE(u[2 * j], u[2 * j + 1], 4, 5, 6, 7, 12, 13, 14, 15, 20, 21, 22, 23, 28, 29, 30, 31);
   for (int k = 0; k < 2; ++k)
-    w[k] = __builtin_shuffle(v[2 * k], v[2 * k + 1], Mask16{0, 1, 4, 5, 8, 9, 12, 13, 16, 17, 20, 21, 24, 25, 28, 29}) +
-           __builtin_shuffle(v[2 * k], v[2 * k + 1], Mask16{2, 3, 6, 7, 10, 11, 14, 15, 18, 19, 22, 23, 26, 27, 30, 31});
-  const Vec16 sums = __builtin_shuffle(w[0], w[1], Mask16{0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30}) +
-                     __builtin_shuffle(w[0], w[1], Mask16{1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31}) +
+    w[k] = PIXELCLOTH_SHUFFLE(v[2 * k], v[2 * k + 1], 0, 1, 4, 5, 8, 9, 12, 13, 16, 17, 20, 21, 24, 25, 28, 29) +
+           PIXELCLOTH_SHUFFLE(v[2 * k], v[2 * k + 1], 2, 3, 6, 7, 10, 11, 14, 15, 18, 19, 22, 23, 26, 27, 30, 31);
+  const Vec16 sums = PIXELCLOTH_SHUFFLE(w[0], w[1], 0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30) +
+                     PIXELCLOTH_SHUFFLE(w[0], w[1], 1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31) +
                      bias;
   __builtin_memcpy(out, &sums, sizeof sums);
 }

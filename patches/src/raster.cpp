@@ -413,7 +413,8 @@ OperatorFile readOperatorFile(const std::filesystem::path& path, std::uint32_t e
     using T = std::remove_pointer_t<decltype(data)>;
     PIXELCLOTH_CHECK(count >= 0 && static_cast<std::uint64_t>(count) <= (bytes.size() - 8 - at) / sizeof(T),
                      name << ": operator file truncated (" << count << " elements do not fit)");
-    std::memcpy(data, bytes.data() + at, count * sizeof(T));
+    // An empty array (the sample operator's mask) has no storage: memcpy's pointers must not be null, even for 0 bytes.
+    if (count > 0) std::memcpy(data, bytes.data() + at, count * sizeof(T));
     at += count * sizeof(T);
   };
   OperatorFile file;

@@ -27,6 +27,9 @@ std::string listOf(const std::vector<std::string>& names) {
   return list;
 }
 
+// The most values (pixels x channels) readExr allocates for.
+constexpr long long kMaxExrValues = 1LL << 28;
+
 // A slice over a column-major height x width matrix: pixel (x, y) is at data[y + x * height].
 Imf::Slice sliceOf(const float* data, const Imath::Box2i& window, int height) {
   return Imf::Slice::Make(Imf::FLOAT, data, window, sizeof(float) * static_cast<size_t>(height), sizeof(float));
@@ -111,6 +114,15 @@ ExrImage readExr(const fs::path& path) {
     const long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
     PIXELCLOTH_CHECK(width > 0 && height > 0 && width * height <= (1LL << 31),
                      file << ": unsupported image size " << width << " x " << height);
+    long long numChannels = 0;
+    for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) ++numChannels;
+    PIXELCLOTH_CHECK(numChannels > 0, file << ": the OpenEXR file has no channels");
+    // A few bytes of header can declare any size: check before allocating (1 GiB of floats at most), and that the
+    // file holds every scan line or tile it declares.
+    PIXELCLOTH_CHECK(width * height * numChannels <= kMaxExrValues,
+                     file << ": the image is " << width << " x " << height << " with " << numChannels
+                          << " channels, more than the " << kMaxExrValues << " values (1 GiB as floats) supported");
+    PIXELCLOTH_CHECK(in.isComplete(), file << ": truncated: some scan lines or tiles are missing");
     image.width = static_cast<int>(width);
     image.height = static_cast<int>(height);
     Imf::FrameBuffer frameBuffer;
@@ -120,12 +132,10 @@ ExrImage readExr(const fs::path& path) {
       image.channelNames.emplace_back(it.name());
       image.channels.emplace_back(Eigen::MatrixXf::Zero(image.height, image.width));
     }
-    PIXELCLOTH_CHECK(!image.channels.empty(), file << ": the OpenEXR file has no channels");
     // Every channel type is read into a FLOAT slice: OpenEXR converts HALF and UINT.
     for (size_t c = 0; c < image.channels.size(); ++c) {
       frameBuffer.insert(image.channelNames[c], sliceOf(image.channels[c].data(), window, image.height));
     }
-    PIXELCLOTH_CHECK(in.isComplete(), file << ": truncated: some scan lines or tiles are missing");
     in.setFrameBuffer(frameBuffer);
     in.readPixels(window.min.y, window.max.y);
   } catch (const InputError&) {

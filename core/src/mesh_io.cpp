@@ -296,124 +296,355 @@ Mesh readObj(const fs::path& path, const std::string& text) {
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// PLY / OFF: OpenMesh parses; the counts the header declares are compared with what it built.
+// PLY / OFF: read here, not by OpenMesh's readers, which loop or build faces from stale numbers on malformed data
+// (a hang found by fuzzing each format, docs/reliability.md). OpenMesh builds the mesh from what was read and refuses
+// faces that are not manifold.
 
-struct DeclaredCounts {
-  long long vertices = -1;  // -1: unknown
-  long long faces = -1;
+// The vertices (0-based) and polygons of a file.
+struct PolygonSoup {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::vector<int>> faces;
 };
 
-DeclaredCounts plyCounts(const fs::path& path, const std::string& bytes) {
-  std::istringstream in(bytes);
+// A PLY scalar type: its size in bytes and how to read it.
+struct PlyType {
+  std::string name;
+  int size = 0;
+  bool integer = false;
+  bool isSigned = false;
+};
+
+bool plyTypeOf(const std::string& name, PlyType& type) {
+  static const std::vector<PlyType> types = {
+      {"char", 1, true, true},    {"int8", 1, true, true},     {"uchar", 1, true, false},  {"uint8", 1, true, false},
+      {"short", 2, true, true},   {"int16", 2, true, true},    {"ushort", 2, true, false}, {"uint16", 2, true, false},
+      {"int", 4, true, true},     {"int32", 4, true, true},    {"uint", 4, true, false},   {"uint32", 4, true, false},
+      {"float", 4, false, true},  {"float32", 4, false, true}, {"double", 8, false, true}, {"float64", 8, false, true}};
+  for (const PlyType& t : types) {
+    if (t.name == name) {
+      type = t;
+      return true;
+    }
+  }
+  return false;
+}
+
+struct PlyProperty {
+  std::string name;
+  bool list = false;
+  PlyType count;  // lists only
+  PlyType value;
+};
+
+struct PlyElement {
+  std::string name;
+  long long count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+// Reads one value after another from a PLY body, in text or binary.
+class PlyValues {
+ public:
+  PlyValues(const std::string& bytes, size_t begin, bool ascii, bool bigEndian)
+      : bytes_(bytes), at_(begin), ascii_(ascii), bigEndian_(bigEndian) {}
+
+  // False at the end of the data, or (text) when the next token is not a number of the type.
+  bool next(const PlyType& type, double& value, std::string& found) {
+    if (ascii_) {
+      while (at_ < bytes_.size() && std::isspace(static_cast<unsigned char>(bytes_[at_]))) ++at_;
+      const size_t begin = at_;
+      while (at_ < bytes_.size() && !std::isspace(static_cast<unsigned char>(bytes_[at_]))) ++at_;
+      found = bytes_.substr(begin, std::min<size_t>(at_ - begin, 20));
+      if (begin == at_) return false;
+      return parseNumber(bytes_.substr(begin, at_ - begin), value) && (!type.integer || value == std::floor(value));
+    }
+    found.clear();
+    if (bytes_.size() - at_ < static_cast<size_t>(type.size)) return false;
+    unsigned char raw[8];
+    for (int i = 0; i < type.size; ++i) raw[i] = static_cast<unsigned char>(bytes_[at_ + (bigEndian_ ? type.size - 1 - i : i)]);
+    at_ += static_cast<size_t>(type.size);
+    std::uint64_t bits = 0;
+    for (int i = type.size - 1; i >= 0; --i) bits = bits << 8 | raw[i];
+    if (!type.integer) {
+      if (type.size == 4) {
+        float f;
+        const std::uint32_t b32 = static_cast<std::uint32_t>(bits);
+        std::memcpy(&f, &b32, 4);
+        value = f;
+      } else {
+        std::memcpy(&value, &bits, 8);
+      }
+    } else if (type.isSigned && (bits >> (8 * type.size - 1) & 1)) {
+      value = static_cast<double>(static_cast<std::int64_t>(bits) - (std::int64_t{1} << (8 * type.size)));
+    } else {
+      value = static_cast<double>(bits);
+    }
+    return true;
+  }
+
+ private:
+  const std::string& bytes_;
+  size_t at_;
+  bool ascii_;
+  bool bigEndian_;
+};
+
+PolygonSoup scanPly(const fs::path& path, const std::string& bytes) {
+  const std::string file = path.string();
+  size_t at = 0;
+  int lineNumber = 0;
+  auto nextLine = [&](std::string& line) {
+    if (at >= bytes.size()) return false;
+    size_t end = bytes.find('\n', at);
+    if (end == std::string::npos) end = bytes.size();
+    line = bytes.substr(at, end - at);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    at = std::min(bytes.size(), end + 1);
+    ++lineNumber;
+    return true;
+  };
   std::string line;
-  std::getline(in, line);
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  PIXELCLOTH_CHECK(line == "ply", path.string() << ": not a PLY file (it does not start with 'ply')");
-  DeclaredCounts counts;
-  bool ended = false, ascii = false;
-  std::string element;
-  long long minimumTokens = 0, elementCount = 0;  // ascii only: each property is at least one token, a list two
-  while (std::getline(in, line)) {
+  PIXELCLOTH_CHECK(nextLine(line) && line == "ply", file << ": not a PLY file (it does not start with 'ply')");
+  std::string format;
+  std::vector<PlyElement> elements;
+  bool ended = false;
+  while (nextLine(line)) {
+    auto malformed = [&](const std::string& why) {
+      std::string shown = line.substr(0, 60);
+      for (char& c : shown) {
+        if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+      }
+      PIXELCLOTH_FAIL(file << ": malformed PLY header line " << lineNumber << " '" << shown << "': " << why);
+    };
     std::istringstream words(line);
-    std::string word;
+    std::string word, extra;
     words >> word;
     if (word == "end_header") {
       ended = true;
       break;
     }
+    if (word.empty() || word == "comment" || word == "obj_info") continue;
     if (word == "format") {
-      words >> word;
-      ascii = word == "ascii";
+      std::string version;
+      words >> format >> version;
+      if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian") {
+        malformed("expected the format ascii, binary_little_endian or binary_big_endian");
+      }
     } else if (word == "element") {
-      elementCount = -1;
-      words >> element >> elementCount;
-      PIXELCLOTH_CHECK(words && elementCount >= 0, path.string() << ": malformed PLY header line '" << line << "'");
-      if (element == "vertex") counts.vertices = elementCount;
-      if (element == "face") counts.faces = elementCount;
+      PlyElement element;
+      if (!(words >> element.name >> element.count) || element.count < 0 || (words >> extra)) {
+        malformed("expected 'element NAME COUNT'");
+      }
+      elements.push_back(element);
     } else if (word == "property") {
-      words >> word;
-      minimumTokens += elementCount * (word == "list" ? (element == "face" ? 4 : 1) : 1);
+      if (elements.empty()) malformed("a property before any element");
+      PlyProperty property;
+      std::string type;
+      words >> type;
+      if (type == "list") {
+        std::string countType, valueType;
+        property.list = true;
+        if (!(words >> countType >> valueType >> property.name) || (words >> extra) ||
+            !plyTypeOf(countType, property.count) || !plyTypeOf(valueType, property.value) || !property.count.integer) {
+          malformed("expected 'property list COUNT_TYPE VALUE_TYPE NAME' with an integer COUNT_TYPE");
+        }
+      } else if (!plyTypeOf(type, property.value) || !(words >> property.name) || (words >> extra)) {
+        malformed("expected 'property TYPE NAME' with TYPE one of char, uchar, short, ushort, int, uint, float, "
+                  "double (or int8 ... float64)");
+      }
+      elements.back().properties.push_back(property);
+    } else {
+      malformed("expected format, element, property, comment or end_header");
     }
   }
-  PIXELCLOTH_CHECK(ended, path.string() << ": malformed PLY header (no 'end_header')");
-  PIXELCLOTH_CHECK(counts.vertices >= 0, path.string() << ": the PLY header declares no 'element vertex'");
-  PIXELCLOTH_CHECK(counts.faces > 0, path.string() << ": no faces (the PLY header declares no faces)");
-  if (ascii) {
-    // OpenMesh's ascii reader builds faces from stale numbers when the data stops early: count the tokens first.
-    long long tokens = 0;
-    for (std::string token; in >> token;) ++tokens;
-    PIXELCLOTH_CHECK(tokens >= minimumTokens, path.string()
-                                                  << ": truncated: the header declares " << counts.vertices
-                                                  << " vertices and " << counts.faces << " faces, which need at least "
-                                                  << minimumTokens << " numbers, but the file has " << tokens);
+  PIXELCLOTH_CHECK(ended, file << ": malformed PLY header (no 'end_header')");
+  PIXELCLOTH_CHECK(!format.empty(), file << ": malformed PLY header (no 'format' line)");
+
+  long long numVertices = -1, numFaces = -1;
+  for (const PlyElement& element : elements) {
+    if (element.name == "vertex") numVertices = element.count;
+    if (element.name == "face") numFaces = element.count;
   }
-  return counts;
+  PIXELCLOTH_CHECK(numVertices >= 0, file << ": the PLY header declares no 'element vertex'");
+  PIXELCLOTH_CHECK(numFaces > 0, file << ": no faces (the PLY header declares no faces)");
+  PIXELCLOTH_CHECK(numVertices < (1LL << 31) && numFaces < (1LL << 31),
+                   file << ": the PLY header declares " << numVertices << " vertices and " << numFaces
+                        << " faces; at most 2^31 - 1 of each are supported");
+  for (const PlyElement& element : elements) {
+    if (element.name == "vertex") {
+      for (const char* axis : {"x", "y", "z"}) {
+        const bool has = std::any_of(element.properties.begin(), element.properties.end(),
+                                     [&](const PlyProperty& p) { return !p.list && p.name == axis; });
+        PIXELCLOTH_CHECK(has, file << ": the PLY vertex element has no '" << axis << "' property");
+      }
+    } else if (element.name == "face") {
+      const bool has = std::any_of(element.properties.begin(), element.properties.end(), [](const PlyProperty& p) {
+        return p.list && p.value.integer && (p.name == "vertex_indices" || p.name == "vertex_index");
+      });
+      PIXELCLOTH_CHECK(has, file << ": the PLY face element has no integer list 'vertex_indices'");
+    }
+  }
+
+  // Walk every value of every element: the data must hold what the header declares, and faces must name vertices.
+  PlyValues values(bytes, at, format == "ascii", format == "binary_big_endian");
+  double value = 0;
+  std::string found;
+  PolygonSoup soup;
+  for (const PlyElement& element : elements) {
+    const bool isVertex = element.name == "vertex", isFace = element.name == "face";
+    for (long long item = 0; item < element.count; ++item) {
+      Eigen::Vector3d point = Eigen::Vector3d::Zero();
+      std::vector<int> face;
+      for (const PlyProperty& property : element.properties) {
+        auto fault = [&](const std::string& what) {
+          PIXELCLOTH_FAIL(file << ": truncated or malformed: " << element.name << " " << item + 1 << " of "
+                               << element.count << " (counting from 1), property '" << property.name << "': " << what);
+        };
+        auto read = [&](const PlyType& type) {
+          if (values.next(type, value, found)) return;
+          if (found.empty()) fault("the data ends, expected a " + type.name);
+          fault("'" + found + "' where a " + type.name + " was expected");
+        };
+        long long n = 1;
+        if (property.list) {
+          read(property.count);
+          PIXELCLOTH_CHECK(value >= 0, file << ": " << element.name << " " << item + 1 << " has a list of " << value
+                                            << " entries in '" << property.name << "'");
+          n = static_cast<long long>(value);
+        }
+        const bool corners =
+            isFace && property.list && (property.name == "vertex_indices" || property.name == "vertex_index");
+        if (corners && n < 3) fault("a face of " + std::to_string(n) + " corners, expected at least 3");
+        for (long long k = 0; k < n; ++k) {
+          read(property.value);
+          if (corners) {
+            if (value < 0 || value >= static_cast<double>(numVertices)) {
+              fault("corner " + std::to_string(k + 1) + " is vertex " + std::to_string(static_cast<long long>(value)) +
+                    " (counting from 0), but the file has " + std::to_string(numVertices) + " vertices");
+            }
+            face.push_back(static_cast<int>(value));
+          }
+        }
+        if (isVertex && !property.list && property.name.size() == 1 && property.name[0] >= 'x' &&
+            property.name[0] <= 'z') {
+          point[property.name[0] - 'x'] = value;
+        }
+      }
+      if (isVertex) soup.points.push_back(point);
+      if (isFace) soup.faces.push_back(std::move(face));
+    }
+  }
+  return soup;
 }
 
-DeclaredCounts offCounts(const fs::path& path, const std::string& bytes) {
+// An ASCII OFF file, line by line: the counts, then one line per vertex (at least three numbers; colours, normals
+// or texture coordinates may follow) and one per face (the corner count, the corners, optional colour numbers).
+PolygonSoup scanOff(const fs::path& path, const std::string& bytes) {
+  const std::string file = path.string();
   std::istringstream in(bytes);
-  std::string keyword;
-  in >> keyword;
+  std::string line;
+  int lineNumber = 0;
+  // The next line with something on it, comments removed, split into words.
+  auto nextWords = [&](std::vector<std::string>& words) {
+    while (std::getline(in, line)) {
+      ++lineNumber;
+      const size_t hash = line.find('#');
+      if (hash != std::string::npos) line.resize(hash);
+      words.clear();
+      std::istringstream split(line);
+      for (std::string w; split >> w;) words.push_back(w);
+      if (!words.empty()) return true;
+    }
+    return false;
+  };
+  std::vector<std::string> words;
+  const bool hasKeyword = nextWords(words);
+  const std::string keyword = hasKeyword ? words[0] : "";
   PIXELCLOTH_CHECK(keyword.size() >= 3 && keyword.compare(keyword.size() - 3, 3, "OFF") == 0,
-                   path.string() << ": not an OFF file (it does not start with 'OFF')");
-  std::string rest;
-  std::getline(in, rest);
-  DeclaredCounts counts;
-  if (rest.find("BINARY") != std::string::npos) return counts;  // counts are binary: rely on the checks after reading
-  std::string token;
-  while (in >> token && token[0] == '#') std::getline(in, rest);  // comment lines
-  long vertices = -1;
-  long long faces = -1;
-  PIXELCLOTH_CHECK(
-      parseIndex(token, vertices) && (in >> faces) && vertices >= 0 && faces >= 0,
-      path.string() << ": malformed OFF header: expected the vertex and face counts after '" << keyword << "'");
-  PIXELCLOTH_CHECK(faces > 0, path.string() << ": no faces (the OFF header declares 0 faces)");
-  counts.vertices = vertices;
-  counts.faces = faces;
-  // OpenMesh's reader builds faces from stale numbers when the data stops early: count the tokens first (3 per vertex,
-  // at least 4 per face).
-  long long tokens = 0;
-  for (std::string token; in >> token;) tokens += token[0] != '#';
-  PIXELCLOTH_CHECK(tokens >= 3 * vertices + 4 * faces,
-                   path.string() << ": truncated: the header declares " << vertices << " vertices and " << faces
-                                 << " faces, which need at least " << 3 * vertices + 4 * faces
-                                 << " numbers, but the file has " << tokens);
-  return counts;
+                   file << ": not an OFF file (it does not start with 'OFF')");
+  PIXELCLOTH_CHECK(std::find(words.begin(), words.end(), "BINARY") == words.end(),
+                   file << ": binary OFF is not supported; save the mesh as ASCII OFF, PLY or OBJ");
+  std::vector<std::string> countWords(words.begin() + 1, words.end());  // the counts may follow on the same line
+  if (countWords.empty()) nextWords(countWords);
+  long vertices = -1, faces = -1;
+  PIXELCLOTH_CHECK(countWords.size() >= 2 && parseIndex(countWords[0], vertices) && parseIndex(countWords[1], faces) &&
+                       vertices >= 0 && faces >= 0,
+                   file << ": malformed OFF header: expected the vertex and face counts after '" << keyword << "'");
+  PIXELCLOTH_CHECK(faces > 0, file << ": no faces (the OFF header declares 0 faces)");
+  PIXELCLOTH_CHECK(vertices < (1L << 31) && faces < (1L << 31),
+                   file << ": the OFF header declares " << vertices << " vertices and " << faces
+                        << " faces; at most 2^31 - 1 of each are supported");
+  PolygonSoup soup;
+  auto truncated = [&](const std::string& what) {
+    PIXELCLOTH_FAIL(file << ": truncated: the header declares " << vertices << " vertices and " << faces
+                         << " faces, but the data ends at " << what);
+  };
+  double number = 0;
+  for (long v = 0; v < vertices; ++v) {
+    if (!nextWords(words)) truncated("vertex " + std::to_string(v + 1));
+    PIXELCLOTH_CHECK(words.size() >= 3, file << ": vertex " << v + 1 << " has " << words.size()
+                                             << " numbers, expected at least 3 (line " << lineNumber << ")");
+    Eigen::Vector3d point;
+    for (size_t k = 0; k < words.size(); ++k) {
+      PIXELCLOTH_CHECK(parseNumber(words[k], number), file << ": vertex " << v + 1 << " has '" << words[k].substr(0, 20)
+                                                           << "' where a number was expected (line " << lineNumber
+                                                           << ")");
+      if (k < 3) point[static_cast<Eigen::Index>(k)] = number;
+    }
+    soup.points.push_back(point);
+  }
+  for (long f = 0; f < faces; ++f) {
+    if (!nextWords(words)) truncated("face " + std::to_string(f + 1));
+    long corners = 0;
+    PIXELCLOTH_CHECK(parseIndex(words[0], corners), file << ": face " << f + 1 << " starts with '" << words[0].substr(0, 20)
+                                                         << "' where its corner count was expected (line "
+                                                         << lineNumber << ")");
+    PIXELCLOTH_CHECK(corners >= 3 && corners < static_cast<long>(words.size()),
+                     file << ": face " << f + 1 << " declares " << corners << " corners, but "
+                          << (corners < 3 ? "a face needs at least 3" : std::to_string(words.size() - 1) + " follow")
+                          << " (line " << lineNumber << ")");
+    std::vector<int> face;
+    for (long k = 1; k <= corners; ++k) {
+      long vertex = -1;
+      PIXELCLOTH_CHECK(parseIndex(words[k], vertex) && vertex >= 0 && vertex < vertices,
+                       file << ": face " << f + 1 << " has corner '" << words[k].substr(0, 20) << "', expected a vertex "
+                            << "number from 0 to " << vertices - 1 << " (line " << lineNumber << ")");
+      face.push_back(static_cast<int>(vertex));
+    }
+    soup.faces.push_back(std::move(face));
+    for (size_t k = static_cast<size_t>(corners) + 1; k < words.size(); ++k) {
+      PIXELCLOTH_CHECK(parseNumber(words[k], number), file << ": face " << f + 1 << " has '" << words[k].substr(0, 20)
+                                                           << "' where a colour number was expected (line "
+                                                           << lineNumber << ")");
+    }
+  }
+  return soup;
 }
 
 Mesh readPlyOrOff(const fs::path& path, const std::string& bytes, Format format) {
-  const DeclaredCounts declared = format == Format::Ply ? plyCounts(path, bytes) : offCounts(path, bytes);
+  const PolygonSoup soup = format == Format::Ply ? scanPly(path, bytes) : scanOff(path, bytes);
   OmMesh om;
-  om.request_face_status();
-  OpenMesh::IO::Options options = OpenMesh::IO::Options::Default;
-  std::istringstream in(bytes);
-  bool ok = false;
-  try {
-    ok = OpenMesh::IO::read_mesh(om, in, extensionOf(format), options);
-  } catch (const std::exception& e) {
-    PIXELCLOTH_FAIL(path.string() << ": OpenMesh could not read the file (" << e.what() << ")");
+  for (const Eigen::Vector3d& p : soup.points) om.add_vertex(OmMesh::Point(p.x(), p.y(), p.z()));
+  // OpenMesh refuses a face that would make an edge or a vertex non-manifold (or repeats a corner); a polygon is
+  // fan-triangulated.
+  long long refused = 0;
+  std::vector<OmMesh::VertexHandle> corners;
+  for (size_t f = 0; f < soup.faces.size(); ++f) {
+    const std::vector<int>& face = soup.faces[f];
+    for (size_t k = 0; k < face.size(); ++k) {
+      PIXELCLOTH_CHECK(std::find(face.begin() + static_cast<long>(k) + 1, face.end(), face[k]) == face.end(),
+                       path.string() << ": face " << f + 1 << " repeats vertex " << face[k]
+                                     << " (the file's numbering, from 0)");
+    }
+    corners.clear();
+    for (int v : face) corners.push_back(om.vertex_handle(static_cast<unsigned>(v)));
+    refused += !om.add_face(corners).is_valid();
   }
-  PIXELCLOTH_CHECK(ok, path.string() << ": OpenMesh could not read the file as "
-                                     << (format == Format::Ply ? "PLY" : "OFF") << ": it is malformed or truncated");
-  const long long nv = static_cast<long long>(om.n_vertices()), nf = static_cast<long long>(om.n_faces());
-  const long long flagged = countFlaggedFaces(om);
-  if (flagged > 0 || (declared.vertices >= 0 && nv > declared.vertices)) {
-    PIXELCLOTH_FAIL(nonManifoldMessage(path, flagged));
-  }
-  PIXELCLOTH_CHECK(declared.vertices < 0 || nv == declared.vertices,
-                   path.string() << ": the header declares " << declared.vertices << " vertices, but only " << nv
-                                 << " could be read: the file is truncated or malformed");
-  // Polygons become several triangles, so only a shortfall is certain to be a fault.
-  PIXELCLOTH_CHECK(declared.faces < 0 || nf >= declared.faces,
-                   path.string() << ": the header declares " << declared.faces << " faces, but only " << nf
-                                 << " triangles could be built: the file is truncated, malformed or not manifold");
+  if (refused > 0) PIXELCLOTH_FAIL(nonManifoldMessage(path, refused));
   Mesh mesh;
-  mesh.V.resize(nv, 3);
-  for (auto v : om.vertices()) {
-    const auto& p = om.point(v);
-    mesh.V.row(v.idx()) << p[0], p[1], p[2];
-  }
-  mesh.F.resize(nf, 3);
+  mesh.V.resize(static_cast<Eigen::Index>(soup.points.size()), 3);
+  for (size_t v = 0; v < soup.points.size(); ++v) mesh.V.row(static_cast<Eigen::Index>(v)) = soup.points[v].transpose();
+  mesh.F.resize(static_cast<Eigen::Index>(om.n_faces()), 3);
   for (auto f : om.faces()) {
     int k = 0;
     for (auto v : f.vertices()) mesh.F(f.idx(), k++) = v.idx();

@@ -149,3 +149,28 @@ TEST(ExrIo, InconsistentImagesAreRefused) {
             std::string::npos);
   EXPECT_TRUE(fs::is_empty(dir));
 }
+
+// A few bytes of header can declare a huge data window: the size is checked before anything is allocated for it
+// (fuzzing found headers that made the reader zero gigabytes before it noticed the file held none of those pixels).
+TEST(ExrIo, AHeaderDeclaringMoreThanAGibibyteIsRefusedBeforeAllocating) {
+  fs::path dir = pixelcloth::testing::freshDir("hugewindow");
+  pc::ExrImage image;
+  image.addChannel("du", Eigen::MatrixXf::Random(64, 64));
+  image.addChannel("dv", Eigen::MatrixXf::Random(64, 64));
+  pc::writeExr(dir / "small.exr", image);
+  std::string bytes = pc::readTextFile(dir / "small.exr");
+  const std::string attribute("dataWindow\0box2i\0", 17);
+  const size_t at = bytes.find(attribute);
+  ASSERT_NE(at, std::string::npos);
+  const size_t box = at + attribute.size() + 4;  // after the attribute's size
+  ASSERT_EQ(int32At(bytes, box + 8), 63);        // xMax of the 64 x 64 window
+  const std::int32_t last = 16383;               // 16384 x 16384 x 2 channels = 2^29 values
+  std::memcpy(&bytes[box + 8], &last, 4);
+  std::memcpy(&bytes[box + 12], &last, 4);
+  std::ofstream(dir / "huge.exr", std::ios::binary) << bytes;
+  std::string message = pixelcloth::testing::inputErrorOf([&] { pc::readExr(dir / "huge.exr"); });
+  EXPECT_EQ(message, (dir / "huge.exr").string() +
+                         ": the image is 16384 x 16384 with 2 channels, more than the 268435456 values (1 GiB as "
+                         "floats) supported")
+      << message;
+}

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -263,4 +265,92 @@ TEST(MeshIo, InvalidMeshIsNotWritten) {
   std::string message = pixelcloth::testing::inputErrorOf([&] { pc::writeMesh(dir / "bad.obj", mesh); });
   EXPECT_NE(message.find("face 3 uses vertex 18"), std::string::npos) << message;  // counted from 1
   EXPECT_TRUE(fs::is_empty(dir));
+}
+
+// Inputs that hung OpenMesh's own readers (found by fuzzing, docs/reliability.md): the file is read by our scan
+// first, which names the fault.
+TEST(MeshIo, FilesThatHungOpenMeshAreRefusedWithTheirFault) {
+  const fs::path off = pixelcloth::testing::asset("fuzz_mesh_off_hang.off");
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::readMesh(off); }),
+            off.string() + ": face 1 declares 0 corners, but a face needs at least 3 (line 9)");
+  const fs::path ply = pixelcloth::testing::asset("fuzz_mesh_ply_hang.ply");
+  std::string message = pixelcloth::testing::inputErrorOf([&] { pc::readMesh(ply); });
+  EXPECT_EQ(message.rfind(ply.string() + ": malformed PLY header line 8 'property list uchar ??????ndices': expected "
+                                         "'property list COUNT_TYPE VALUE_TYPE NAME'",
+                          0),
+            0u)
+      << message;
+}
+
+TEST(MeshIo, PlyAndOffStructureFaultsAreNamed) {
+  fs::path dir = pixelcloth::testing::freshDir("plyoff");
+  auto errorFor = [&](const std::string& name, const std::string& text) {
+    writeFile(dir / name, text);
+    return pixelcloth::testing::inputErrorOf([&] { pc::readMesh(dir / name); });
+  };
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string ply = (dir / "m.ply").string();
+  EXPECT_EQ(errorFor("m.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"),
+            ply + ": truncated or malformed: face 1 of 1 (counting from 1), property 'vertex_indices': corner 3 is "
+                  "vertex 7 (counting from 0), but the file has 3 vertices");
+  EXPECT_EQ(errorFor("m.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n"),
+            ply + ": truncated or malformed: face 1 of 1 (counting from 1), property 'vertex_indices': the data ends, "
+                  "expected a int");
+  EXPECT_EQ(errorFor("m.ply", header + "0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n"),
+            ply + ": truncated or malformed: vertex 2 of 3 (counting from 1), property 'y': 'x' where a float was "
+                  "expected");
+  EXPECT_EQ(errorFor("m.ply", header + "0 0 0\n1 0 0\n0 1 0\n2 0 1\n"),
+            ply + ": truncated or malformed: face 1 of 1 (counting from 1), property 'vertex_indices': a face of 2 "
+                  "corners, expected at least 3");
+  EXPECT_EQ(errorFor("m.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n"),
+            ply + ": face 1 repeats vertex 1 (the file's numbering, from 0)");
+  std::string noZ = header;
+  noZ.replace(noZ.find("property float z\n"), 17, "");
+  EXPECT_EQ(errorFor("m.ply", noZ + "0 0\n1 0\n0 1\n3 0 1 2\n"), ply + ": the PLY vertex element has no 'z' property");
+
+  const std::string off = (dir / "m.off").string();
+  EXPECT_EQ(errorFor("m.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
+            off + ": face 1 has corner '3', expected a vertex number from 0 to 2 (line 6)");
+  EXPECT_EQ(errorFor("m.off", "OFF\n3 1 0\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n"),
+            off + ": vertex 2 has 2 numbers, expected at least 3 (line 4)");
+  EXPECT_EQ(errorFor("m.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n"),
+            off + ": face 1 declares 4 corners, but 3 follow (line 6)");
+  EXPECT_EQ(errorFor("m.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n/ 0 1 2\n"),
+            off + ": face 1 starts with '/' where its corner count was expected (line 6)");
+  EXPECT_EQ(errorFor("m.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+            off + ": truncated: the header declares 3 vertices and 2 faces, but the data ends at face 2");
+  EXPECT_EQ(errorFor("m.off", "OFF BINARY\n"), off + ": binary OFF is not supported; save the mesh as ASCII OFF, PLY or OBJ");
+  // Comments, counts on the keyword's line and colour numbers after a face are read.
+  writeFile(dir / "ok.off", "OFF 3 1 0 # counts here\n# a comment\n0 0 0\n1 0 0 # colourless\n0 1 0\n3 0 1 2 255 0 0\n");
+  pc::Mesh mesh = pc::readMesh(dir / "ok.off");
+  EXPECT_EQ(mesh.numFaces(), 1);
+  EXPECT_EQ(mesh.V.row(1), Eigen::RowVector3d(1, 0, 0));
+}
+
+TEST(MeshIo, ReadsBigEndianBinaryPlyWithExtraProperties) {
+  fs::path dir = pixelcloth::testing::freshDir("bigendian");
+  std::string bytes =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "property uchar red\nelement face 1\nproperty list uchar int vertex_indices\nproperty short flags\nend_header\n";
+  auto put = [&](auto value) {
+    unsigned char raw[sizeof(value)];
+    std::memcpy(raw, &value, sizeof(value));
+    for (size_t i = sizeof(value); i-- > 0;) bytes.push_back(static_cast<char>(raw[i]));  // most significant first
+  };
+  const float points[3][3] = {{0, 0, 0}, {1.5f, 0, 0}, {0, -2.25f, 0.5f}};
+  for (const auto& p : points) {
+    for (float c : p) put(c);
+    put(static_cast<unsigned char>(200));
+  }
+  put(static_cast<unsigned char>(3));
+  for (std::int32_t v : {0, 1, 2}) put(v);
+  put(static_cast<std::int16_t>(-1));
+  writeFile(dir / "be.ply", bytes);
+  pc::Mesh mesh = pc::readMesh(dir / "be.ply");
+  ASSERT_EQ(mesh.numVertices(), 3);
+  ASSERT_EQ(mesh.numFaces(), 1);
+  EXPECT_EQ(mesh.V.row(2), Eigen::RowVector3d(0, -2.25, 0.5));
+  EXPECT_EQ(mesh.F.row(0), Eigen::RowVector3i(0, 1, 2));
 }

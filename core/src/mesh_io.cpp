@@ -180,7 +180,7 @@ ObjScan scanObj(const fs::path& path, const std::string& text) {
                                                  << ", which is too large (line " << line << ")");
         return static_cast<int>(raw - 1);
       }
-      PIXELCLOTH_CHECK(-raw <= definedSoFar, file << ": face " << faceNumber << " uses " << what << " " << raw
+      PIXELCLOTH_CHECK(raw >= -static_cast<long>(definedSoFar), file << ": face " << faceNumber << " uses " << what << " " << raw
                                                   << ", but only " << definedSoFar << " precede it (line " << line
                                                   << ")");
       return static_cast<int>(definedSoFar + raw);

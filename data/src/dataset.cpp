@@ -102,7 +102,7 @@ DatasetSettings DatasetSettings::fromJson(const json& j, const std::string& cont
   if (shard.contains("first") || shard.contains("end")) {
     PIXELCLOTH_CHECK(core::requireValue<int>(shard, "first", context + ": shard") == s.first() &&
                          core::requireValue<int>(shard, "end", context + ": shard") == s.end(),
-                     context << ": shard range [" << shard.value("first", -1) << ", " << shard.value("end", -1)
+                     context << ": shard range [" << core::requireValue<int>(shard, "first", context) << ", " << core::requireValue<int>(shard, "end", context)
                              << ") does not match shard " << s.shard.toString() << " of " << s.count << " samples ["
                              << s.first() << ", " << s.end() << ")");
   }

@@ -20,9 +20,14 @@ std::vector<std::vector<std::int64_t>> shapesOf(const torch::nn::Sequential& net
   return shapes;
 }
 
-std::string firstLine(const c10::Error& e) {
-  const std::string what = e.what_without_backtrace();
-  return what.substr(0, what.find('\n'));
+// LibTorch's loaders throw c10::Error, and torch::jit::ErrorReport (a std::exception) when the pickle names a type
+// it cannot parse: both are a damaged file (fuzzing found the second).
+std::string firstLine(const std::exception& e) {
+  const auto* error = dynamic_cast<const c10::Error*>(&e);
+  const std::string what = error ? error->what_without_backtrace() : e.what();
+  const size_t start = what.find_first_not_of(" \n");
+  if (start == std::string::npos) return "no reason given";
+  return what.substr(start, what.find('\n', start) - start);
 }
 
 constexpr int kRecordFields = 8;
@@ -59,8 +64,12 @@ nlohmann::json modelSidecar(const ModelSpec& spec, const TrainingData& data, int
 }
 
 ModelSpec specOfSidecar(const nlohmann::json& json, const std::string& context) {
-  PIXELCLOTH_CHECK(json.is_object() && json.value("format", "") == "pixelcloth.model",
-                   context << ": not a pixelcloth model (format '" << json.value("format", "") << "')");
+  // Not json.value(), which throws nlohmann's type_error for a "format" that is not a string (fuzzing found it).
+  const std::string format = json.is_object() && json.contains("format") && json["format"].is_string()
+                                 ? json["format"].get<std::string>()
+                                 : json.is_object() && json.contains("format") ? json["format"].dump() : "";
+  PIXELCLOTH_CHECK(json.is_object() && format == "pixelcloth.model",
+                   context << ": not a pixelcloth model (format '" << format << "')");
   ModelSpec spec;
   spec.architecture =
       architectureFromName(core::requireValue<std::string>(json, "architecture", context), context + ": architecture");
@@ -86,7 +95,7 @@ void loadWeights(torch::nn::Sequential& net, const fs::path& path, const std::st
     torch::serialize::InputArchive archive;
     archive.load_from(path.string());
     net->load(archive);
-  } catch (const c10::Error& e) {
+  } catch (const std::exception& e) {
     PIXELCLOTH_FAIL(path.string() << ": not the weights of " << what << " (truncated, or from another model): "
                                   << firstLine(e));
   }
@@ -123,7 +132,7 @@ void loadCheckpoint(const fs::path& path, const nlohmann::json& signature, torch
   try {
     archive.load_from(path.string());
     archive.read("signature", stored);
-  } catch (const c10::Error& e) {
+  } catch (const std::exception& e) {
     PIXELCLOTH_FAIL(path.string() << ": not a pixelcloth training checkpoint (truncated or damaged): " << firstLine(e)
                                   << "; delete it to start the run afresh");
   }
@@ -148,7 +157,7 @@ void loadCheckpoint(const fs::path& path, const nlohmann::json& signature, torch
     adam.load(optimizer);
     archive.read("records", records);
     archive.read("best", best);
-  } catch (const c10::Error& e) {
+  } catch (const std::exception& e) {
     PIXELCLOTH_FAIL(path.string() << ": a damaged training checkpoint: " << firstLine(e));
   }
   // The records are read through data_ptr<double> and item<double>: a float32 or a 2-D "best" would have escaped as

@@ -117,14 +117,16 @@ Engine TrainedModel::engine() const { return impl_->engine; }
 const nlohmann::json& TrainedModel::sidecar() const { return impl_->networks.front().sidecar; }
 Architecture TrainedModel::architecture() const { return impl_->networks.front().model.spec().architecture; }
 OffsetSpace TrainedModel::space() const {
-  return offsetSpaceFromName(sidecar().value("space", ""), (impl_->folder / "model.json").string() + ": space");
+  const std::string context = (impl_->folder / "model.json").string();
+  return offsetSpaceFromName(core::valueOr<std::string>(sidecar(), "space", "", context), context + ": space");
 }
 int TrainedModel::inputs() const { return impl_->networks.front().model.spec().inputs(); }
-int TrainedModel::poseSize() const { return sidecar().value("pose_size", 0); }
-int TrainedModel::markers() const { return sidecar().value("markers", 0); }
+int TrainedModel::poseSize() const { return core::valueOr(sidecar(), "pose_size", 0, (impl_->folder / "model.json").string()); }
+int TrainedModel::markers() const { return core::valueOr(sidecar(), "markers", 0, (impl_->folder / "model.json").string()); }
 bool TrainedModel::residual() const { return sidecar().contains("residual") && !sidecar()["residual"].is_null(); }
 fs::path TrainedModel::baseFolder() const {
-  return residual() ? fs::path(sidecar()["residual"].value("folder", "")) : fs::path();
+  return residual() ? fs::path(core::valueOr<std::string>(sidecar()["residual"], "folder", "", (impl_->folder / "model.json").string() + ": residual"))
+                    : fs::path();
 }
 
 std::vector<int> TrainedModel::patches() const {
@@ -135,13 +137,13 @@ std::vector<int> TrainedModel::patches() const {
 }
 
 void TrainedModel::checkDataset(const data::DatasetInfo& dataset) const {
-  PIXELCLOTH_CHECK(dataset.settings.vertexCount == sidecar().value("vertices", -1) &&
+  PIXELCLOTH_CHECK(dataset.settings.vertexCount == core::valueOr(sidecar(), "vertices", -1, (impl_->folder / "model.json").string()) &&
                        dataset.settings.poseSize == poseSize(),
                    dataset.folder.string() << " holds the " << dataset.settings.garment << " ("
                                            << dataset.settings.vertexCount << " vertices, poses of "
                                            << dataset.settings.poseSize << "); the model in "
-                                           << impl_->folder.string() << " is for the " << sidecar().value("garment", "?")
-                                           << " (" << sidecar().value("vertices", -1) << " vertices, poses of "
+                                           << impl_->folder.string() << " is for the " << core::valueOr<std::string>(sidecar(), "garment", "?", (impl_->folder / "model.json").string())
+                                           << " (" << core::valueOr(sidecar(), "vertices", -1, (impl_->folder / "model.json").string()) << " vertices, poses of "
                                            << poseSize() << ")");
 }
 

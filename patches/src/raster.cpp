@@ -454,8 +454,11 @@ OperatorFile readOperatorFile(const std::filesystem::path& path, std::uint32_t e
   getArray(file.vertices.data(), vertexCount);
   PIXELCLOTH_CHECK(at == bytes.size() - 8, name << ": " << (bytes.size() - 8 - at) << " unexpected trailing bytes");
   PIXELCLOTH_CHECK(outer[0] == 0 && outer[rows] == nnz, name << ": corrupted row index");
+  // The whole row index first: a later row's bad start must not send an earlier row's entries past the arrays.
   for (std::int64_t r = 0; r < rows; ++r) {
     PIXELCLOTH_CHECK(outer[r] <= outer[r + 1], name << ": corrupted row index at row " << r);
+  }
+  for (std::int64_t r = 0; r < rows; ++r) {
     for (int p = outer[r]; p < outer[r + 1]; ++p)
       PIXELCLOTH_CHECK(
           inner[p] >= 0 && inner[p] < cols && (p == outer[r] || inner[p] > inner[p - 1]) && std::isfinite(values[p]),

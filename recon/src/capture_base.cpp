@@ -18,9 +18,10 @@ CaptureBase baseOfCapture(const fs::path& baseFolder, const fs::path& dataset, c
   const std::string context = manifestPath.string();
   const nlohmann::json manifest = core::readJson(manifestPath);
   const data::DatasetInfo info = data::readDatasetInfo(dataset);
-  PIXELCLOTH_CHECK(manifest.value("format", "") == "pixelcloth.base",
-                   context << ": not a base folder's manifest (format '" << manifest.value("format", "") << "')");
-  PIXELCLOTH_CHECK(manifest.value("dataset_manifest_crc32", 0u) == data::fileCrc32(dataset / "manifest.json"),
+  const std::string format = core::valueOr<std::string>(manifest, "format", "", context);
+  PIXELCLOTH_CHECK(format == "pixelcloth.base", context << ": not a base folder's manifest (format '" << format << "')");
+  PIXELCLOTH_CHECK(core::valueOr(manifest, "dataset_manifest_crc32", 0u, context) ==
+                       data::fileCrc32(dataset / "manifest.json"),
                    context << ": made from another dataset than " << dataset.string());
   const nlohmann::json settings = core::requireField(manifest, "settings", context);
   ReconstructionOptions options;

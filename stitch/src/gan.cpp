@@ -136,10 +136,10 @@ GanReport trainGan(const learn::TrainedModel& patchModel, const learn::TrainingD
                            << " model; the blender is trained on a patch model's stitched predictions (pixelcloth "
                               "train --model patch)");
   const nlohmann::json& sidecar = patchModel.sidecar();
-  PIXELCLOTH_CHECK(sidecar.value("dataset_manifest_crc32", std::uint64_t{0}) == data.manifestCrc,
+  PIXELCLOTH_CHECK(core::valueOr(sidecar, "dataset_manifest_crc32", std::uint64_t{0}, modelName + "/model.json") == data.manifestCrc,
                    "gan: the patch model in "
-                       << modelName << " was trained on " << sidecar.value("dataset", "?") << " (manifest CRC "
-                       << sidecar.value("dataset_manifest_crc32", std::uint64_t{0}) << "), not on "
+                       << modelName << " was trained on " << core::valueOr<std::string>(sidecar, "dataset", "?", modelName + "/model.json") << " (manifest CRC "
+                       << core::valueOr(sidecar, "dataset_manifest_crc32", std::uint64_t{0}, modelName + "/model.json") << "), not on "
                        << data.folder.string() << " (manifest CRC " << data.manifestCrc << ")");
   PIXELCLOTH_CHECK(patchModel.space() == data.space,
                    "gan: the patch model in " << modelName << " predicts " << learn::offsetSpaceName(patchModel.space())
@@ -190,7 +190,7 @@ GanReport trainGan(const learn::TrainedModel& patchModel, const learn::TrainingD
                          {"vertices", data.garment.mesh.numVertices()},
                          {"space", learn::offsetSpaceName(data.space)},
                          {"patch_model", absolutePath(patchModel.folder())},
-                         {"patch_model_width", sidecar.value("width", 0.0)},
+                         {"patch_model_width", core::valueOr(sidecar, "width", 0.0, modelName + "/model.json")},
                          {"dataset", absolutePath(data.folder)},
                          {"dataset_manifest_crc32", data.manifestCrc},
                          {"residual", data.residual() ? nlohmann::json{{"folder", absolutePath(data.baseFolder)},
@@ -275,9 +275,9 @@ GanBlender::GanBlender(const fs::path& folder, const garment::Garment& garment) 
                               "and model.pt)");
   impl_->info = core::readJson(jsonPath);
   const nlohmann::json& info = impl_->info;
-  PIXELCLOTH_CHECK(info.is_object() && info.value("format", "") == "pixelcloth.model",
-                   context << ": not a pixelcloth model (format '"
-                           << (info.is_object() ? info.value("format", "") : std::string()) << "')");
+  const std::string format = core::valueOr<std::string>(info, "format", "", context);
+  PIXELCLOTH_CHECK(info.is_object() && format == "pixelcloth.model",
+                   context << ": not a pixelcloth model (format '" << format << "')");
   const std::string architecture = core::requireValue<std::string>(info, "architecture", context);
   PIXELCLOTH_CHECK(architecture == "gan",
                    context << ": a " << architecture << " model, expected a GAN blender (architecture gan)");
@@ -321,7 +321,7 @@ Eigen::MatrixXf GanBlender::blend(const Eigen::MatrixXf& stitched) const {
   const int V = impl_->images->imager().numVertices();
   PIXELCLOTH_CHECK(stitched.cols() == 3 * V && stitched.rows() > 0,
                    "blend: " << stitched.rows() << " x " << stitched.cols() << " values, expected batch x " << 3 * V
-                             << " (3 per vertex of the " << impl_->info.value("garment", "?") << ")");
+                             << " (3 per vertex of the " << core::valueOr<std::string>(impl_->info, "garment", "?", "blend: the blender's model.json") << ")");
   PIXELCLOTH_CHECK(stitched.allFinite(), "blend: the stitched values are not all finite");
   std::vector<Eigen::MatrixXf> rows;
   for (Eigen::Index k = 0; k < stitched.rows(); ++k) {

@@ -105,20 +105,23 @@ PcaFilter PcaFilter::load(const std::filesystem::path& folder) {
 
 void PcaFilter::checkMatches(const std::string& garment, int numVertices, learn::OffsetSpace space) const {
   const std::string where = folder_.empty() ? std::string("pca filter") : (folder_ / "pca.json").string();
-  PIXELCLOTH_CHECK(info_.value("garment", "") == garment && info_.value("vertices", 0) == numVertices,
-                   where << ": a filter of the " << info_.value("garment", "?") << " with " << info_.value("vertices", 0)
-                         << " vertices, expected the " << garment << " with " << numVertices);
-  PIXELCLOTH_CHECK(info_.value("space", "") == learn::offsetSpaceName(space),
-                   where << ": values in space " << info_.value("space", "?") << ", expected "
+  const std::string itsGarment = core::valueOr<std::string>(info_, "garment", "?", where);
+  const int itsVertices = core::valueOr(info_, "vertices", 0, where);
+  const std::string itsSpace = core::valueOr<std::string>(info_, "space", "?", where);
+  PIXELCLOTH_CHECK(itsGarment == garment && itsVertices == numVertices,
+                   where << ": a filter of the " << itsGarment << " with " << itsVertices << " vertices, expected the "
+                         << garment << " with " << numVertices);
+  PIXELCLOTH_CHECK(itsSpace == learn::offsetSpaceName(space),
+                   where << ": values in space " << itsSpace << ", expected "
                          << learn::offsetSpaceName(space) << " (the model's)");
 }
 
 void PcaFilter::checkMatches(const learn::TrainingData& data) const {
   checkMatches(data.garment.name, data.garment.mesh.numVertices(), data.space);
   const std::string where = folder_.empty() ? std::string("pca filter") : (folder_ / "pca.json").string();
-  const auto crc = info_.value("dataset_manifest_crc32", std::uint32_t{0});
+  const auto crc = core::valueOr(info_, "dataset_manifest_crc32", std::uint32_t{0}, where);
   PIXELCLOTH_CHECK(crc == data.manifestCrc,
-                   where << ": fitted on " << info_.value("dataset", "?") << " (manifest CRC-32 " << crc
+                   where << ": fitted on " << core::valueOr<std::string>(info_, "dataset", "?", where) << " (manifest CRC-32 " << crc
                          << "), not on " << data.folder.string() << " (" << data.manifestCrc
                          << "); fit one on this dataset with pixelcloth pca");
 }

@@ -87,3 +87,14 @@ TEST(JsonIo, IntegersOutOfTheTypesRangeAreRefusedNotWrapped) {
   EXPECT_EQ(pc::requireValue<int>(j, "ok", "m.json"), 7);
   EXPECT_EQ(pc::requireValue<std::uint32_t>(j, "ok", "m.json"), 7u);
 }
+
+// nlohmann's json.value(key, fallback) throws its type_error, naming no file, when the key holds another type; the
+// readers of model.json, pca.json and base manifests used it (fuzzing found the model.json case).
+TEST(JsonIo, ValueOrFallsBackOnlyWhenTheKeyIsAbsent) {
+  const nlohmann::json object = {{"format", 5}, {"width", 0.5}};
+  EXPECT_EQ(pc::valueOr(object, "width", 1.0, "m.json"), 0.5);
+  EXPECT_EQ(pc::valueOr(object, "absent", 1.0, "m.json"), 1.0);
+  EXPECT_EQ(pc::valueOr(nlohmann::json::array(), "width", 1.0, "m.json"), 1.0);
+  EXPECT_EQ(pixelcloth::testing::inputErrorOf([&] { pc::valueOr<std::string>(object, "format", "", "m.json"); }),
+            "m.json: field 'format' is number, expected a string");
+}

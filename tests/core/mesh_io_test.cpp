@@ -193,6 +193,9 @@ TEST(MeshIo, ObjFaultsAreNamedWithFileAndPlace) {
             file + ": face 2 uses vertex 9, but the file has 4 vertices (line 6)");
   EXPECT_EQ(errorFor("garment.obj", quad + "f 1 2 -7\n"),
             file + ": face 1 uses vertex -7, but only 4 precede it (line 5)");
+  // strtol saturates: -99...9 is LONG_MIN, whose negation overflowed (found by fuzzing).
+  EXPECT_EQ(errorFor("garment.obj", quad + "f 1 2 -99999999999999999999999\n"),
+            file + ": face 1 uses vertex -9223372036854775808, but only 4 precede it (line 5)");
   EXPECT_EQ(errorFor("garment.obj", quad + "f 1 2 0\n"),
             file + ": face 1 uses vertex 0, but OBJ indices start at 1 (line 5)");
   EXPECT_EQ(errorFor("garment.obj", quad + "vt 0 0\nf 1/1 2/2 3/1\n"),

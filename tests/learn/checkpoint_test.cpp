@@ -70,3 +70,32 @@ TEST(Checkpoint, RecordsOfAnotherTypeOrRankAreRefusedNamingTheFile) {
   EXPECT_EQ(report.epochs.size(), 2u);
   EXPECT_EQ(report.bestEpoch, 2);
 }
+
+// Found by fuzzing (docs/reliability.md): LibTorch throws torch::jit::ErrorReport, not c10::Error, for a pickle that
+// names a type it cannot parse, and model.json readers called json.value("format", "") on a "format" of another type
+// (nlohmann's type_error). Both escaped as the CLI's "internal error" instead of naming the file.
+TEST(Checkpoint, DamagedArchivesFromFuzzingAreRefusedNamingTheFile) {
+  pl::Model model(tinySpec(), 1);
+  torch::nn::Sequential& net = pl::ModelAccess::network(model);
+  const fs::path weights = pt::asset("fuzz_weights_unknown_type.pt");
+  std::string message = pt::inputErrorOf([&] { pl::loadWeights(net, weights, "the test network"); });
+  EXPECT_EQ(message.rfind(weights.string() + ": not the weights of the test network (truncated, or from another "
+                                             "model): ",
+                          0),
+            0u)
+      << message;
+  // A zip that is no LibTorch archive (LibTorch leaks its zip reader on it: tests/sanitize/lsan.supp).
+  torch::optim::Adam adam(net->parameters());
+  pl::NetworkReport report;
+  const fs::path checkpoint = pt::asset("fuzz_checkpoint_zip_leak.pt");
+  message = pt::inputErrorOf([&] { pl::loadCheckpoint(checkpoint, kSignature, net, adam, report); });
+  EXPECT_EQ(message.rfind(checkpoint.string() + ": not a pixelcloth training checkpoint (truncated or damaged): ", 0), 0u)
+      << message;
+}
+
+TEST(Checkpoint, ASidecarWhoseFormatIsNotAStringIsRefused) {
+  EXPECT_EQ(pt::inputErrorOf([] { pl::specOfSidecar(nlohmann::json{{"format", 5}}, "m/model.json"); }),
+            "m/model.json: not a pixelcloth model (format '5')");
+  EXPECT_EQ(pt::inputErrorOf([] { pl::specOfSidecar(nlohmann::json::array(), "m/model.json"); }),
+            "m/model.json: not a pixelcloth model (format '')");
+}

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -255,6 +257,31 @@ TEST(Raster, OperatorsSurviveSaveAndLoad) {
     std::string message = inputErrorOf([&] { pp::loadRasterOperator(dir / name); });
     EXPECT_NE(message.find(name), std::string::npos) << message;
   }
+}
+
+// Found by fuzzing: a row index that rises past the entries in row 1 and falls back later sent row 0's loop over the
+// entries past their arrays before the fall was seen. The whole index is checked first now.
+TEST(Raster, ARowIndexPastTheEntriesIsRefusedBeforeTheEntriesAreRead) {
+  auto dir = freshDir("rowindex");
+  pp::RasterOperator raster = pp::buildRaster(shirt(), 1, pp::layoutFrame(shirt(), 1, 64));
+  pp::saveOperator(dir / "s.op", pp::buildSample(shirt(), raster));
+  std::string bytes;
+  {
+    std::ifstream in(dir / "s.op", std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const size_t outer = 8 + 4 + 3 * 4 + 3 * 8 + 5 * 8;  // magic, kind, layout and size, frame, counts
+  const std::int32_t far = 1 << 30;
+  std::memcpy(&bytes[outer + 4], &far, 4);  // row 0 would end a billion entries in
+  std::uint64_t h = 1469598103934665603ull;  // the file's checksum (FNV-1a with raster.cpp's basis)
+  for (size_t i = 0; i + 8 < bytes.size(); ++i) {
+    h ^= static_cast<unsigned char>(bytes[i]);
+    h *= 1099511628211ull;
+  }
+  std::memcpy(&bytes[bytes.size() - 8], &h, 8);
+  std::ofstream(dir / "bad.op", std::ios::binary) << bytes;
+  const std::string message = inputErrorOf([&] { pp::loadSampleOperator(dir / "bad.op"); });
+  EXPECT_EQ(message, (dir / "bad.op").string() + ": corrupted row index at row 1") << message;
 }
 
 TEST(Raster, BadInputsAreRefused) {

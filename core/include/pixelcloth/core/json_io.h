@@ -62,6 +62,11 @@ bool integerFits(const nlohmann::json& value) {
 }
 }  // namespace detail
 
+/// `object[key]` converted to T when `object` is an object holding the key, else `fallback`; a value of another type
+/// is refused as requireValue refuses it (nlohmann's own json.value() throws type_error there, which names no file).
+template <typename T>
+T valueOr(const nlohmann::json& object, const std::string& key, const T& fallback, const std::string& context);
+
 /// `object[key]` converted to T (a number, bool, string, or anything nlohmann::json converts to); throws
 /// `InputError` "<context>: missing field 'key'" or "<context>: field 'key' is a string, expected a number".
 template <typename T>
@@ -96,6 +101,12 @@ T requireValue(const nlohmann::json& object, const std::string& key, const std::
     PIXELCLOTH_FAIL(context << ": field '" << key << "' is " << field.type_name() << ", expected "
                             << detail::jsonKindOf<T>());
   }
+}
+
+template <typename T>
+T valueOr(const nlohmann::json& object, const std::string& key, const T& fallback, const std::string& context) {
+  if (!object.is_object() || !object.contains(key)) return fallback;
+  return requireValue<T>(object, key, context);
 }
 
 }  // namespace pixelcloth::core

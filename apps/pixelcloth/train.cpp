@@ -152,7 +152,7 @@ void registerTrain(CLI::App& app) {
                    "after another on all threads)")
       ->capture_default_str();
   verb->add_option("--out", args->out,
-                   "Model folder: model.pt (best epoch), model.json, log.csv, checkpoint.pt (patch_NN/ per patch; gan: "
+                   "Model folder: model.tensors (best epoch), model.json, log.csv, checkpoint.tensors (patch_NN/ per patch; gan: "
                    "no checkpoint)")
       ->required();
   verb->add_flag("--quiet", args->options.quiet, "No progress on stderr");

@@ -3,6 +3,8 @@
 #include <cstdio>
 
 #include "model_impl.h"
+#include "pixelcloth/learn/weights_file.h"
+#include "tensor.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
@@ -12,23 +14,6 @@ namespace pixelcloth::learn {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::vector<std::vector<std::int64_t>> shapesOf(const torch::nn::Sequential& net) {
-  std::vector<std::vector<std::int64_t>> shapes;
-  for (const torch::Tensor& t : net->parameters()) shapes.push_back(t.sizes().vec());
-  for (const torch::Tensor& t : net->buffers()) shapes.push_back(t.sizes().vec());
-  return shapes;
-}
-
-// LibTorch's loaders throw c10::Error, and torch::jit::ErrorReport (a std::exception) when the pickle names a type
-// it cannot parse: both are a damaged file (fuzzing found the second).
-std::string firstLine(const std::exception& e) {
-  const auto* error = dynamic_cast<const c10::Error*>(&e);
-  const std::string what = error ? error->what_without_backtrace() : e.what();
-  const size_t start = what.find_first_not_of(" \n");
-  if (start == std::string::npos) return "no reason given";
-  return what.substr(start, what.find('\n', start) - start);
-}
 
 constexpr int kRecordFields = 8;
 
@@ -81,99 +66,105 @@ ModelSpec specOfSidecar(const nlohmann::json& json, const std::string& context) 
   return spec;
 }
 
-void saveWeights(const torch::nn::Sequential& net, const fs::path& path) {
-  torch::serialize::OutputArchive archive;
-  net->save(archive);
-  core::writeAtomically(path, [&](const fs::path& temporary) { archive.save_to(temporary.string()); });
-}
+void saveWeights(const torch::nn::Sequential& net, const fs::path& path) { saveModuleWeights(*net, path); }
 
 void loadWeights(torch::nn::Sequential& net, const fs::path& path, const std::string& what) {
   std::error_code ec;
   PIXELCLOTH_CHECK(fs::is_regular_file(path, ec), path.string() << ": no such file (the weights of " << what << ")");
-  const auto expected = shapesOf(net);
-  try {
-    torch::serialize::InputArchive archive;
-    archive.load_from(path.string());
-    net->load(archive);
-  } catch (const std::exception& e) {
-    PIXELCLOTH_FAIL(path.string() << ": not the weights of " << what << " (truncated, or from another model): "
-                                  << firstLine(e));
-  }
-  PIXELCLOTH_CHECK(shapesOf(net) == expected,
-                   path.string() << ": its tensors do not have the shapes of " << what << " (another architecture or width)");
+  loadModuleWeights(*net, path, what);
 }
 
+// checkpoint.tensors: the network's arrays under "model/", Adam's moments under "adam/<i>/" for the i-th parameter
+// (counting from 0, in net->parameters() order) that has taken a step, the epoch records and the best epoch; the
+// signature and Adam's step counts in the header's meta.
 void saveCheckpoint(const fs::path& path, const nlohmann::json& signature, const torch::nn::Sequential& net,
                     torch::optim::Adam& adam, const NetworkReport& report) {
-  torch::serialize::OutputArchive archive, model, optimizer;
-  net->save(model);
-  adam.save(optimizer);
-  archive.write("model", model);
-  archive.write("optimizer", optimizer);
-  archive.write("signature", c10::IValue(signature.dump()));
-  torch::Tensor records = torch::zeros({static_cast<std::int64_t>(report.epochs.size()), kRecordFields}, torch::kFloat64);
-  for (size_t i = 0; i < report.epochs.size(); ++i) {
-    const EpochRecord& e = report.epochs[i];
-    const double fields[kRecordFields] = {double(e.epoch),      e.loss,   e.normalLoss, e.edgeLoss, e.trainErrorCm,
-                                          e.regularisationErrorCm, e.seconds, e.dataWaitSeconds};
-    for (int k = 0; k < kRecordFields; ++k) records[i][k] = fields[k];
+  core::TensorFile file;
+  file.kind = "checkpoint";
+  appendModuleArrays(*net, file, "model/");
+  nlohmann::json steps = nlohmann::json::array();
+  const std::vector<torch::Tensor> parameters = net->parameters();
+  for (size_t i = 0; i < parameters.size(); ++i) {
+    const auto found = adam.state().find(c10::guts::to_string(parameters[i].unsafeGetTensorImpl()));
+    if (found == adam.state().end()) {
+      steps.push_back(0);
+      continue;
+    }
+    const auto& state = static_cast<const torch::optim::AdamParamState&>(*found->second);
+    steps.push_back(state.step());
+    const std::string prefix = "adam/" + std::to_string(i) + "/";
+    file.arrays.emplace_back(prefix + "exp_avg", arrayOfTensor(state.exp_avg(), prefix + "exp_avg"));
+    file.arrays.emplace_back(prefix + "exp_avg_sq", arrayOfTensor(state.exp_avg_sq(), prefix + "exp_avg_sq"));
   }
-  archive.write("records", records);
-  archive.write("best", torch::tensor({double(report.bestEpoch), report.bestErrorCm}, torch::kFloat64));
-  core::writeAtomically(path, [&](const fs::path& temporary) { archive.save_to(temporary.string()); });
+  std::vector<double> records;
+  for (const EpochRecord& e : report.epochs)
+    records.insert(records.end(), {double(e.epoch), e.loss, e.normalLoss, e.edgeLoss, e.trainErrorCm,
+                                   e.regularisationErrorCm, e.seconds, e.dataWaitSeconds});
+  file.arrays.emplace_back(
+      "records", core::NpyArray::from(records, {static_cast<std::int64_t>(report.epochs.size()), kRecordFields}));
+  file.arrays.emplace_back("best", core::NpyArray::from(std::vector<double>{double(report.bestEpoch), report.bestErrorCm}, {2}));
+  file.meta = {{"signature", signature}, {"adam_steps", steps}};
+  core::writeTensorFile(path, file);
 }
 
 void loadCheckpoint(const fs::path& path, const nlohmann::json& signature, torch::nn::Sequential& net,
                     torch::optim::Adam& adam, NetworkReport& report) {
-  const auto expected = shapesOf(net);
-  torch::serialize::InputArchive archive, model, optimizer;
-  c10::IValue stored;
-  torch::Tensor records, best;
+  const std::string name = path.string();
+  core::TensorFile file;
   try {
-    archive.load_from(path.string());
-    archive.read("signature", stored);
-  } catch (const std::exception& e) {
-    PIXELCLOTH_FAIL(path.string() << ": not a pixelcloth training checkpoint (truncated or damaged): " << firstLine(e)
-                                  << "; delete it to start the run afresh");
+    file = core::readTensorFile(path, "checkpoint");
+  } catch (const core::InputError& e) {
+    PIXELCLOTH_FAIL(e.what() << "; delete it to start the run afresh");
   }
-  PIXELCLOTH_CHECK(stored.isString(), path.string() << ": not a pixelcloth training checkpoint");
-  const nlohmann::json previous = nlohmann::json::parse(stored.toStringRef(), nullptr, false);
+  const nlohmann::json previous = file.meta.contains("signature") ? file.meta["signature"] : nlohmann::json();
   if (previous != signature) {
     std::string key = "?";
     for (const auto& [k, v] : signature.items())
-      if (!previous.contains(k) || previous[k] != v) {
+      if (!previous.is_object() || !previous.contains(k) || previous[k] != v) {
         key = k;
         break;
       }
-    PIXELCLOTH_FAIL(path.string() << ": holds a run with other settings (" << key << ": "
-                                  << (previous.is_object() && previous.contains(key) ? previous[key].dump() : "none")
-                                  << " there, " << (signature.contains(key) ? signature[key].dump() : "none")
-                                  << " now); use another --out, or delete the folder to start afresh");
+    PIXELCLOTH_FAIL(name << ": holds a run with other settings (" << key << ": "
+                         << (previous.is_object() && previous.contains(key) ? previous[key].dump() : "none")
+                         << " there, " << (signature.contains(key) ? signature[key].dump() : "none")
+                         << " now); use another --out, or delete the folder to start afresh");
   }
-  try {
-    archive.read("model", model);
-    net->load(model);
-    archive.read("optimizer", optimizer);
-    adam.load(optimizer);
-    archive.read("records", records);
-    archive.read("best", best);
-  } catch (const std::exception& e) {
-    PIXELCLOTH_FAIL(path.string() << ": a damaged training checkpoint: " << firstLine(e));
+  const std::string what = "this run's network";
+  loadModuleArrays(*net, file, path, what, "model/");
+
+  const std::vector<torch::Tensor> parameters = net->parameters();
+  const auto steps = core::requireValue<std::vector<std::int64_t>>(file.meta, "adam_steps", name + ": meta");
+  PIXELCLOTH_CHECK(steps.size() == parameters.size(), name << ": Adam steps for " << steps.size()
+                                                           << " parameters, the network has " << parameters.size());
+  adam.state().clear();
+  for (size_t i = 0; i < parameters.size(); ++i) {
+    PIXELCLOTH_CHECK(steps[i] >= 0, name << ": Adam step " << steps[i] << " for parameter " << i);
+    if (steps[i] == 0) continue;
+    const std::string prefix = "adam/" + std::to_string(i) + "/";
+    auto state = std::make_unique<torch::optim::AdamParamState>();
+    state->step(steps[i]);
+    torch::Tensor average = torch::zeros_like(parameters[i]), squares = torch::zeros_like(parameters[i]);
+    for (auto [key, tensor] : {std::pair{"exp_avg", &average}, std::pair{"exp_avg_sq", &squares}}) {
+      const core::NpyArray* array = file.find(prefix + key);
+      PIXELCLOTH_CHECK(array, name << ": has no array '" << prefix << key << "' (Adam's state of parameter " << i << ")");
+      copyArrayInto(*tensor, *array, prefix + key, path, what);
+    }
+    state->exp_avg(average);
+    state->exp_avg_sq(squares);
+    adam.state()[c10::guts::to_string(parameters[i].unsafeGetTensorImpl())] = std::move(state);
   }
-  // The records are read through data_ptr<double> and item<double>: a float32 or a 2-D "best" would have escaped as
-  // LibTorch's c10::Error instead of naming the file.
-  PIXELCLOTH_CHECK(shapesOf(net) == expected && records.dim() == 2 && records.size(1) == kRecordFields &&
-                       records.scalar_type() == torch::kFloat64 && best.dim() == 1 && best.numel() == 2 &&
-                       best.scalar_type() == torch::kFloat64,
-                   path.string() << ": a training checkpoint whose tensors do not fit this model");
+
+  const core::NpyArray* records = file.find("records");
+  const core::NpyArray* best = file.find("best");
+  PIXELCLOTH_CHECK(records && records->dtype == "<f8" && records->shape.size() == 2 &&
+                       records->shape[1] == kRecordFields && best && best->dtype == "<f8" && best->size() == 2,
+                   name << ": its epoch records are missing or not " << kRecordFields << " float64 columns");
   report.epochs.clear();
-  const torch::Tensor r = records.contiguous();
-  for (std::int64_t i = 0; i < r.size(0); ++i) {
-    const double* f = r[i].data_ptr<double>();
+  const double* f = records->data<double>();
+  for (std::int64_t i = 0; i < records->shape[0]; ++i, f += kRecordFields)
     report.epochs.push_back({int(f[0]), f[1], f[2], f[3], f[4], f[5], f[6], f[7]});
-  }
-  report.bestEpoch = int(best[0].item<double>());
-  report.bestErrorCm = best[1].item<double>();
+  report.bestEpoch = int(best->data<double>()[0]);
+  report.bestErrorCm = best->data<double>()[1];
 }
 
 }  // namespace pixelcloth::learn

@@ -1,6 +1,6 @@
 #pragma once
 
-// Model folders on disk (learn/-internal): the JSON sidecar, the weights archive, and the training checkpoint that
+// Model folders on disk (learn/-internal): the JSON sidecar, the weights (model.tensors), and the training checkpoint that
 // a run resumes from.
 
 #include <torch/torch.h>
@@ -26,14 +26,14 @@ nlohmann::json modelSidecar(const ModelSpec& spec, const TrainingData& data, int
 /// The spec a sidecar describes, checked (InputError naming `context`).
 ModelSpec specOfSidecar(const nlohmann::json& sidecar, const std::string& context);
 
-/// Writes the network's weights and buffers as a LibTorch archive, atomically.
+/// Writes the network's weights and buffers as a pixelcloth tensor file (core/tensor_file.h), atomically.
 void saveWeights(const torch::nn::Sequential& net, const std::filesystem::path& path);
 /// Loads weights into `net`, checking every tensor's shape (LibTorch's own load takes any): InputError naming the
-/// file for a missing, truncated or foreign archive.
+/// file for a missing, truncated, damaged or foreign file.
 void loadWeights(torch::nn::Sequential& net, const std::filesystem::path& path, const std::string& what);
 
-/// checkpoint.pt: the weights, the optimizer's state, the epochs so far and the run's signature, in one archive
-/// written atomically.
+/// checkpoint.tensors: the weights, the optimizer's state, the epochs so far and the run's signature, in one tensor
+/// file written atomically.
 void saveCheckpoint(const std::filesystem::path& path, const nlohmann::json& signature,
                     const torch::nn::Sequential& net, torch::optim::Adam& adam, const NetworkReport& report);
 /// Restores them; InputError when the file is damaged or its signature differs (naming the first setting that does).

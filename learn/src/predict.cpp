@@ -97,7 +97,7 @@ TrainedModel::TrainedModel(const fs::path& folder, const garment::Garment& garme
     network.target->to(ModelAccess::device(network.model));
     PIXELCLOTH_CHECK(summarize(spec).output == network.target->shape(),
                      context << ": its output does not fit the " << garment.name);
-    loadWeights(ModelAccess::network(network.model), path / "model.pt",
+    loadWeights(ModelAccess::network(network.model), path / "model.tensors",
                 std::string("a ") + architectureName(spec.architecture) + " network of width " +
                     std::to_string(spec.width) + " (" + context + ")");
     impl_->networks.push_back(std::move(network));

@@ -5,6 +5,10 @@
 #include <torch/torch.h>
 
 #include <Eigen/Core>
+#include <filesystem>
+#include <string>
+
+#include "pixelcloth/core/npy.h"
 
 namespace pixelcloth::learn {
 
@@ -21,5 +25,14 @@ inline Eigen::MatrixXf toEigen(const torch::Tensor& t) {
                                                                                                c.size(0), c.size(1));
   return rows;
 }
+
+/// A copy of the tensor's values as an array of a tensor file (core/tensor_file.h). Throws `InputError` naming `name`
+/// for a scalar type the file cannot hold (float32, float64, int32, int64 and uint8 it can).
+core::NpyArray arrayOfTensor(const torch::Tensor& tensor, const std::string& name);
+
+/// Copies `array` (named `name` in the tensor file `path`) into `tensor`. Throws `InputError` naming both when its
+/// dtype or shape differs from the tensor's (the weights of another network than `what`) or a value is not finite.
+void copyArrayInto(torch::Tensor& tensor, const core::NpyArray& array, const std::string& name,
+                   const std::filesystem::path& path, const std::string& what);
 
 }  // namespace pixelcloth::learn

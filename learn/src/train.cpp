@@ -243,7 +243,7 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
   NetworkReport report;
   report.patch = job.patch;
   report.folder = job.folder;
-  const fs::path checkpoint = job.folder / "checkpoint.pt";
+  const fs::path checkpoint = job.folder / "checkpoint.tensors";
   if (fs::exists(checkpoint)) {
     loadCheckpoint(checkpoint, signature, net, adam, report);
     report.resumedAt = static_cast<int>(report.epochs.size());
@@ -298,7 +298,7 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
     if (report.bestEpoch == 0 || !hasRegularisation || record.regularisationErrorCm < report.bestErrorCm) {
       report.bestEpoch = epoch;
       report.bestErrorCm = hasRegularisation ? record.regularisationErrorCm : record.trainErrorCm;
-      saveWeights(net, job.folder / "model.pt");
+      saveWeights(net, job.folder / "model.tensors");
       sidecar["epoch"] = epoch;
       sidecar["train_error_cm"] = record.trainErrorCm;
       sidecar["regularisation_error_cm"] = numberOrNull(record.regularisationErrorCm);

@@ -15,6 +15,7 @@
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/progress.h"
+#include "pixelcloth/learn/weights_file.h"
 #include "pixelcloth/stitch/evaluate.h"
 
 namespace pixelcloth::stitch {
@@ -27,11 +28,6 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 constexpr int kEvaluationChunk = 8;  ///< images through the generator at once when blending
-
-std::string firstLine(const c10::Error& e) {
-  const std::string what = e.what_without_backtrace();
-  return what.substr(0, what.find('\n'));
-}
 
 nlohmann::json numberOrNull(double value) {
   return std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value);
@@ -103,13 +99,6 @@ std::string csvOf(const std::vector<GanEpoch>& epochs) {
     csv << e.epoch << ',' << e.generatorL1 << ',' << e.generatorAdversarial << ',' << e.discriminator << ','
         << e.regularisationErrorCm << ',' << e.stitchedErrorCm << ',' << e.seconds << '\n';
   return csv.str();
-}
-
-std::vector<std::vector<std::int64_t>> shapesOf(const torch::nn::Module& module) {
-  std::vector<std::vector<std::int64_t>> shapes;
-  for (const torch::Tensor& t : module.parameters()) shapes.push_back(t.sizes().vec());
-  for (const torch::Tensor& t : module.buffers()) shapes.push_back(t.sizes().vec());
-  return shapes;
 }
 
 std::string absolutePath(const fs::path& path) { return fs::absolute(path).lexically_normal().string(); }
@@ -237,9 +226,7 @@ GanReport trainGan(const learn::TrainedModel& patchModel, const learn::TrainingD
     if (data.regularisation.empty() || record.regularisationErrorCm < bestErrorCm) {
       bestErrorCm = record.regularisationErrorCm;
       report.bestEpoch = epoch;
-      torch::serialize::OutputArchive archive;
-      networks.generator->save(archive);
-      core::writeAtomically(out / "model.pt", [&](const fs::path& temporary) { archive.save_to(temporary.string()); });
+      learn::saveModuleWeights(*networks.generator, out / "model.tensors");
       info["epoch"] = epoch;
       info["regularisation_error_cm"] = numberOrNull(record.regularisationErrorCm);
       info["stitched_regularisation_error_cm"] = numberOrNull(stitchedErrorCm);
@@ -267,12 +254,12 @@ struct GanBlender::Impl {
 
 GanBlender::GanBlender(const fs::path& folder, const garment::Garment& garment) : impl_(std::make_unique<Impl>()) {
   impl_->folder = folder;
-  const fs::path jsonPath = folder / "model.json", weightsPath = folder / "model.pt";
+  const fs::path jsonPath = folder / "model.json", weightsPath = folder / "model.tensors";
   const std::string context = jsonPath.string();
   std::error_code ec;
   PIXELCLOTH_CHECK(fs::is_regular_file(jsonPath, ec),
                    context << ": no such file (a GAN blender folder from pixelcloth train --model gan has model.json "
-                              "and model.pt)");
+                              "and model.tensors)");
   impl_->info = core::readJson(jsonPath);
   const nlohmann::json& info = impl_->info;
   const std::string format = core::valueOr<std::string>(info, "format", "", context);
@@ -292,22 +279,11 @@ GanBlender::GanBlender(const fs::path& folder, const garment::Garment& garment) 
   impl_->images = std::make_unique<ClothTensors>(garment, context);
 
   impl_->generator = UNetGenerator(width);
-  const auto expected = shapesOf(*impl_->generator);
   PIXELCLOTH_CHECK(fs::is_regular_file(weightsPath, ec), weightsPath.string()
                                                              << ": no such file (the weights of the GAN blender "
                                                              << context << " describes)");
-  const std::string what = "a GAN generator of width " + std::to_string(width) + " (" + context + ")";
-  try {
-    torch::serialize::InputArchive archive;
-    archive.load_from(weightsPath.string());
-    impl_->generator->load(archive);
-  } catch (const c10::Error& e) {
-    PIXELCLOTH_FAIL(weightsPath.string() << ": not the weights of " << what
-                                         << " (truncated, or from another model): " << firstLine(e));
-  }
-  PIXELCLOTH_CHECK(shapesOf(*impl_->generator) == expected, weightsPath.string()
-                                                                << ": its tensors do not have the shapes of " << what
-                                                                << " (another architecture or width)");
+  learn::loadModuleWeights(*impl_->generator, weightsPath,
+                           "a GAN generator of width " + std::to_string(width) + " (" + context + ")");
   PIXELCLOTH_CHECK(
       impl_->generator->scale.gt(0).all().item<bool>() && impl_->generator->mean.isfinite().all().item<bool>(),
       weightsPath.string() << ": its normalisation (mean, scale) is not finite and positive");

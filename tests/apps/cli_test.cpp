@@ -950,12 +950,12 @@ TEST_F(CliBodyTest, GenerateMakesACheckedNecktieDatasetAndResumes) {
   const CliRun train = runPixelcloth({"train", "--dataset", data.string(), "--model", "necktie", "--width", "0.125",
                                       "--epochs", "2", "--batch", "2", "--out", model.string(), "--quiet"});
   ASSERT_EQ(train.status, 0) << train;
-  for (const char* name : {"model.pt", "model.json", "log.csv"}) EXPECT_TRUE(fs::exists(model / name)) << name;
+  for (const char* name : {"model.tensors", "model.json", "log.csv"}) EXPECT_TRUE(fs::exists(model / name)) << name;
   EXPECT_EQ(nlohmann::json::parse(readFile(model / "model.json"))["architecture"], "necktie");
   EXPECT_TRUE(refused(runPixelcloth({"train", "--dataset", data.string(), "--model", "whole", "--epochs", "1", "--out",
                                      (out / "whole").string()}),
                       {"whole model does not fit", "necktie"}));
-  EXPECT_FALSE(fs::exists(out / "whole" / "model.pt"));
+  EXPECT_FALSE(fs::exists(out / "whole" / "model.tensors"));
   // The same command again finds everything done and changes nothing.
   const std::string before = readFile(data / "positions.npy");
   const CliRun again = runPixelcloth({"generate", "--garment", "necktie", "--count", "3", "--seed", "5", "--body",

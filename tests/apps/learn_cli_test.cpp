@@ -180,7 +180,7 @@ TEST_F(LearnCli, AKilledRunResumesToTheWeightsOfAnUninterruptedOne) {
   std::cout << "[fc] killed after " << done << " of 150 epochs\n";
   ASSERT_LT(done, 150) << "the run ended before it was killed; nothing was tested";
   ASSERT_EQ(capture(command(killed)).status, 0);
-  EXPECT_EQ(readFile(whole / "model.pt"), readFile(killed / "model.pt"));
+  EXPECT_EQ(readFile(whole / "model.tensors"), readFile(killed / "model.tensors"));
   EXPECT_EQ(nlohmann::json::parse(readFile(whole / "model.json"))["epoch"],
             nlohmann::json::parse(readFile(killed / "model.json"))["epoch"]);
 }
@@ -197,11 +197,11 @@ TEST_F(LearnCli, BadInputIsRefusedNamingTheFile) {
   // A truncated checkpoint.
   const fs::path broken = work_ / "broken";
   fs::copy(model, broken);
-  const std::string weights = readFile(model / "model.pt");
-  writeFile(broken / "model.pt", weights.substr(0, weights.size() / 2));
+  const std::string weights = readFile(model / "model.tensors");
+  writeFile(broken / "model.tensors", weights.substr(0, weights.size() / 2));
   EXPECT_TRUE(refused(runPixelcloth({"evaluate", "--model", broken.string(), "--dataset", dataset().string(), "--out",
                                      (work_ / "b").string()}),
-                      {"model.pt", "truncated"}));
+                      {"model.tensors", "truncated"}));
   EXPECT_FALSE(fs::exists(work_ / "b"));
   // An engine that does not exist; a negative number of networks at once.
   EXPECT_TRUE(refused(runPixelcloth({"evaluate", "--model", model.string(), "--dataset", dataset().string(), "--out",
@@ -239,7 +239,7 @@ TEST_F(LearnCli, BadInputIsRefusedNamingTheFile) {
   // Another run's settings in the output folder.
   EXPECT_TRUE(refused(runPixelcloth({"train", "--dataset", dataset().string(), "--model", "fc", "--width", "0.125",
                                      "--epochs", "2", "--lr", "0.01", "--out", model.string()}),
-                      {"checkpoint.pt", "learning_rate"}));
+                      {"checkpoint.tensors", "learning_rate"}));
 }
 
 }  // namespace

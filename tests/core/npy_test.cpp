@@ -17,6 +17,7 @@
 
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
+#include "support/python.h"
 #include "support/test_util.h"
 
 namespace pc = pixelcloth::core;
@@ -40,33 +41,6 @@ fs::path writeRawNpy(const fs::path& path, const std::string& dict, const std::s
 
 std::string floats(std::initializer_list<float> values) {
   return std::string(reinterpret_cast<const char*>(values.begin()), values.size() * sizeof(float));
-}
-
-// A Python interpreter that has numpy: `python3` on the PATH first, then Debian's own (a pyenv or venv python3 on the
-// PATH may lack the python3-numpy package). Empty when there is none.
-const std::string& numpyPython() {
-  static const std::string found = [] {
-    for (const char* python : {"python3", "/usr/bin/python3"}) {
-      if (std::system((std::string(python) + " -c 'import numpy' >/dev/null 2>&1").c_str()) == 0) return python;
-    }
-    return "";
-  }();
-  return found;
-}
-
-// Runs a Python snippet and returns its stdout and stderr; `file` (a file or the test's folder) is sys.argv[1].
-std::string runPython(const std::string& code, const fs::path& file) {
-  const fs::path script =
-      (fs::is_directory(file) ? file : file.parent_path()) / "check.py";  // inside the test's folder
-  std::ofstream(script) << code;
-  std::string command = numpyPython() + " '" + script.string() + "' '" + file.string() + "' 2>&1";
-  std::string output;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return "popen failed";
-  char buffer[256];
-  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  ::pclose(pipe);
-  return output;
 }
 
 }  // namespace
@@ -211,34 +185,34 @@ TEST(Npy, WritingInconsistentArraysIsRefused) {
 }
 
 TEST(Npy, NumpyReadsOurFiles) {
-  if (numpyPython().empty()) GTEST_SKIP() << "no python3 with numpy";
+  if (pixelcloth::testing::numpyPython().empty()) GTEST_SKIP() << "no python3 with numpy";
   fs::path dir = pixelcloth::testing::freshDir("numpyreads");
   Eigen::MatrixXf m(2, 3);
   m << 1.5f, -2, 3, 4, 5, 6.25f;
   pc::writeNpy(dir / "m.npy", m);
-  EXPECT_EQ(runPython("import sys, numpy\na = numpy.load(sys.argv[1])\n"
+  EXPECT_EQ(pixelcloth::testing::runPython("import sys, numpy\na = numpy.load(sys.argv[1])\n"
                       "print(a.dtype.str, a.shape, a.flags['C_CONTIGUOUS'], a[0, 0], a[0, 2], a[1, 2])\n",
                       dir / "m.npy"),
             "<f4 (2, 3) True 1.5 3.0 6.25\n");
   pc::writeNpy(dir / "i8.npy", std::vector<std::int64_t>{-(std::int64_t{1} << 40), 7, 8, 9}, {2, 1, 2});
   EXPECT_EQ(
-      runPython("import sys, numpy\na = numpy.load(sys.argv[1])\nprint(a.dtype.str, a.shape, a[0, 0, 0], a[1, 0, 1])\n",
+      pixelcloth::testing::runPython("import sys, numpy\na = numpy.load(sys.argv[1])\nprint(a.dtype.str, a.shape, a[0, 0, 0], a[1, 0, 1])\n",
                 dir / "i8.npy"),
       "<i8 (2, 1, 2) -1099511627776 9\n");
   pc::writeNpy(dir / "u1.npy", std::vector<std::uint8_t>{0, 200}, {2});
-  EXPECT_EQ(runPython("import sys, numpy\na = numpy.load(sys.argv[1])\nprint(a.dtype.str, a.shape, a.tolist())\n",
+  EXPECT_EQ(pixelcloth::testing::runPython("import sys, numpy\na = numpy.load(sys.argv[1])\nprint(a.dtype.str, a.shape, a.tolist())\n",
                       dir / "u1.npy"),
             "|u1 (2,) [0, 200]\n");
   pc::writeNpy(dir / "s.npy", std::vector<double>{0.1}, {});
-  EXPECT_EQ(runPython("import sys, numpy\na = numpy.load(sys.argv[1])\nprint(a.dtype.str, a.shape, repr(float(a)))\n",
+  EXPECT_EQ(pixelcloth::testing::runPython("import sys, numpy\na = numpy.load(sys.argv[1])\nprint(a.dtype.str, a.shape, repr(float(a)))\n",
                       dir / "s.npy"),
             "<f8 () 0.1\n");
 }
 
 TEST(Npy, WeReadWhatNumpyWrites) {
-  if (numpyPython().empty()) GTEST_SKIP() << "no python3 with numpy";
+  if (pixelcloth::testing::numpyPython().empty()) GTEST_SKIP() << "no python3 with numpy";
   fs::path dir = pixelcloth::testing::freshDir("numpywrites");
-  ASSERT_EQ(runPython("import sys, numpy\n"
+  ASSERT_EQ(pixelcloth::testing::runPython("import sys, numpy\n"
                       "d = sys.argv[1]\n"
                       "numpy.save(d + '/f4.npy', numpy.arange(12, dtype='<f4').reshape(3, 4) / 8)\n"
                       "numpy.save(d + '/i4.npy', numpy.array([[-5, 6]], dtype='<i4'))\n"

@@ -1,4 +1,5 @@
-// learn::loadCheckpoint: a training run's checkpoint.pt (weights, optimizer state, signature, epoch records).
+// learn::loadCheckpoint: a training run's checkpoint.tensors (weights, optimizer state, signature, epoch
+// records; a tensor file, core/tensor_file.h).
 #include "fuzz_network.h"
 #include "fuzz_support.h"
 
@@ -18,19 +19,25 @@ Run& run() {
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   torch::set_num_threads(1);
   if (const char* out = pixelcloth::fuzz::seedOut()) {
+    // One step, so that the seed holds Adam's moments as a resumed run's checkpoint does.
+    torch::Tensor sum = torch::zeros({});
+    for (const torch::Tensor& p : pixelcloth::learn::ModelAccess::network(run().model)->parameters())
+      sum = sum + p.square().sum();
+    sum.backward();
+    run().adam.step();
     pixelcloth::learn::NetworkReport report;
     report.epochs.push_back({1, 0.5, 0.1, 0.2, 3.0, 4.0, 0.01, 0.001});
     report.epochs.push_back({2, 0.25, 0.1, 0.2, 2.0, 3.0, 0.01, 0.001});
     report.bestEpoch = 2;
     report.bestErrorCm = 3.0;
-    pixelcloth::learn::saveCheckpoint(std::filesystem::path(out) / "checkpoint.pt", kSignature,
+    pixelcloth::learn::saveCheckpoint(std::filesystem::path(out) / "checkpoint.tensors", kSignature,
                                       pixelcloth::learn::ModelAccess::network(run().model), run().adam, report);
   }
   return 0;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const auto path = pixelcloth::fuzz::writeInput("checkpoint.pt", data, size);
+  const auto path = pixelcloth::fuzz::writeInput("checkpoint.tensors", data, size);
   pixelcloth::learn::NetworkReport report;
   return pixelcloth::fuzz::guarded([&] {
     pixelcloth::learn::loadCheckpoint(path, kSignature, pixelcloth::learn::ModelAccess::network(run().model),

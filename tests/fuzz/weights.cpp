@@ -1,4 +1,4 @@
-// learn::loadWeights: a model.pt (a LibTorch archive: a zip of pickled tensors) loaded into a known network.
+// learn::loadWeights: a model.tensors (a pixelcloth tensor file, core/tensor_file.h) loaded into a known network.
 #include "fuzz_network.h"
 #include "fuzz_support.h"
 
@@ -12,12 +12,12 @@ pixelcloth::learn::Model& model() {
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   torch::set_num_threads(1);
   if (const char* out = pixelcloth::fuzz::seedOut())
-    pixelcloth::learn::saveWeights(pixelcloth::learn::ModelAccess::network(model()), std::filesystem::path(out) / "model.pt");
+    pixelcloth::learn::saveWeights(pixelcloth::learn::ModelAccess::network(model()), std::filesystem::path(out) / "model.tensors");
   return 0;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const auto path = pixelcloth::fuzz::writeInput("model.pt", data, size);
+  const auto path = pixelcloth::fuzz::writeInput("model.tensors", data, size);
   return pixelcloth::fuzz::guarded(
       [&] { pixelcloth::learn::loadWeights(pixelcloth::learn::ModelAccess::network(model()), path, "the fuzz network"); });
 }

@@ -1,15 +1,19 @@
-// The training checkpoint reader (learn/src/checkpoint.h) on archives that LibTorch reads without complaint but whose
-// epoch records have the wrong type or rank: found while writing the checkpoint fuzz target (docs/reliability.md).
-// Before the fix, data_ptr<double> on float32 records and item() on a 1 x 2 "best" escaped as LibTorch's c10::Error
-// (the CLI's "internal error", exit 1) instead of an InputError naming the file.
+// The training checkpoint and weights files (learn/src/checkpoint.h): a restored run continues exactly, damaged or
+// foreign contents are refused naming the file, and the LibTorch archives that crashed LibTorch's reader under
+// fuzzing never reach it.
 
 #include "checkpoint.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <functional>
+
 #include "model_impl.h"
+#include "pixelcloth/core/tensor_file.h"
 #include "support/test_util.h"
 
+namespace pc = pixelcloth::core;
 namespace pl = pixelcloth::learn;
 namespace pt = pixelcloth::testing;
 namespace fs = std::filesystem;
@@ -27,70 +31,133 @@ pl::ModelSpec tinySpec() {
 
 const nlohmann::json kSignature = {{"format", "test"}};
 
-// A checkpoint as saveCheckpoint writes it, but with `records` and `best` as given.
-void writeCheckpoint(const fs::path& path, torch::nn::Sequential& net, torch::optim::Adam& adam,
-                     const torch::Tensor& records, const torch::Tensor& best) {
-  torch::serialize::OutputArchive archive, model, optimizer;
-  net->save(model);
-  adam.save(optimizer);
-  archive.write("model", model);
-  archive.write("optimizer", optimizer);
-  archive.write("signature", c10::IValue(kSignature.dump()));
-  archive.write("records", records);
-  archive.write("best", best);
-  archive.save_to(path.string());
+// `steps` Adam steps on a fixed quadratic, so that the moments are not zero.
+void step(torch::nn::Sequential& net, torch::optim::Adam& adam, int steps) {
+  for (int k = 0; k < steps; ++k) {
+    adam.zero_grad();
+    torch::Tensor loss = net->forward(torch::ones({3, 4})).square().sum();
+    loss.backward();
+    adam.step();
+  }
+}
+
+pl::NetworkReport twoEpochs() {
+  pl::NetworkReport report;
+  report.epochs.push_back({1, 0.5, 0.1, 0.2, 3.0, std::nan(""), 0.01, 0.001});
+  report.epochs.push_back({2, 0.25, 0.1, 0.2, 2.0, 3.0, 0.01, 0.001});
+  report.bestEpoch = 2;
+  report.bestErrorCm = 3.0;
+  return report;
+}
+
+// The file as saveCheckpoint wrote it, with `edit` applied to its arrays, written back.
+void rewrite(const fs::path& from, const fs::path& to, const std::function<void(pc::TensorFile&)>& edit) {
+  pc::TensorFile file = pc::readTensorFile(from, "checkpoint");
+  edit(file);
+  pc::writeTensorFile(to, file);
 }
 
 }  // namespace
 
-TEST(Checkpoint, RecordsOfAnotherTypeOrRankAreRefusedNamingTheFile) {
+// A resumed run must take the same steps as one that was never stopped: the weights and Adam's moments and step
+// counts all come back.
+TEST(Checkpoint, ARestoredRunStepsExactlyAsTheUninterruptedOne) {
+  const fs::path dir = pt::freshDir("resume");
+  torch::manual_seed(3);
+  pl::Model first(tinySpec(), 1);
+  torch::nn::Sequential& a = pl::ModelAccess::network(first);
+  torch::optim::Adam adamA(a->parameters(), torch::optim::AdamOptions(0.01));
+  step(a, adamA, 3);
+  pl::saveCheckpoint(dir / "checkpoint.tensors", kSignature, a, adamA, twoEpochs());
+
+  torch::manual_seed(4);  // other initial weights: the load must replace them
+  pl::Model second(tinySpec(), 1);
+  torch::nn::Sequential& b = pl::ModelAccess::network(second);
+  torch::optim::Adam adamB(b->parameters(), torch::optim::AdamOptions(0.01));
+  pl::NetworkReport report;
+  pl::loadCheckpoint(dir / "checkpoint.tensors", kSignature, b, adamB, report);
+  ASSERT_EQ(report.epochs.size(), 2u);
+  EXPECT_TRUE(std::isnan(report.epochs[0].regularisationErrorCm));
+  EXPECT_EQ(report.epochs[1].trainErrorCm, 2.0);
+  EXPECT_EQ(report.bestEpoch, 2);
+  EXPECT_EQ(report.bestErrorCm, 3.0);
+
+  step(a, adamA, 2);
+  step(b, adamB, 2);
+  const auto pa = a->parameters(), pb = b->parameters();
+  ASSERT_EQ(pa.size(), pb.size());
+  for (size_t i = 0; i < pa.size(); ++i) EXPECT_TRUE(torch::equal(pa[i], pb[i])) << "parameter " << i;
+}
+
+TEST(Checkpoint, DamagedOrForeignContentsAreRefusedNamingTheFile) {
   const fs::path dir = pt::freshDir("records");
   pl::Model model(tinySpec(), 1);
   torch::nn::Sequential& net = pl::ModelAccess::network(model);
   torch::optim::Adam adam(net->parameters());
-  const torch::Tensor goodRecords = torch::zeros({2, 8}, torch::kFloat64);
-  const torch::Tensor goodBest = torch::tensor({2.0, 1.5}, torch::kFloat64);
+  step(net, adam, 1);
+  const fs::path good = dir / "good.tensors";
+  pl::saveCheckpoint(good, kSignature, net, adam, twoEpochs());
+  auto find = [](pc::TensorFile& file, const std::string& name) -> pc::NpyArray& {
+    for (auto& [key, array] : file.arrays)
+      if (key == name) return array;
+    throw std::runtime_error("no array " + name);
+  };
   struct Case {
     const char* name;
-    torch::Tensor records, best;
+    std::function<void(pc::TensorFile&)> edit;
+    std::string message;
   };
-  for (const Case& c : {Case{"float32_records", goodRecords.to(torch::kFloat32), goodBest},
-                        Case{"float32_best", goodRecords, goodBest.to(torch::kFloat32)},
-                        Case{"best_1x2", goodRecords, goodBest.reshape({1, 2})}}) {
-    const fs::path path = dir / (std::string(c.name) + ".pt");
-    writeCheckpoint(path, net, adam, c.records, c.best);
+  const std::vector<Case> cases = {
+      {"float32_records",
+       [&](pc::TensorFile& f) { find(f, "records") = pc::NpyArray::from(std::vector<float>(16), {2, 8}); },
+       "its epoch records are missing or not 8 float64 columns"},
+      {"best_1x3", [&](pc::TensorFile& f) { find(f, "best") = pc::NpyArray::from(std::vector<double>(3), {1, 3}); },
+       "its epoch records are missing or not 8 float64 columns"},
+      {"no_moments", [&](pc::TensorFile& f) { f.arrays.erase(f.arrays.end() - 3); },
+       "has no array 'adam/"},
+      {"nan_weight",
+       [&](pc::TensorFile& f) { reinterpret_cast<float*>(find(f, "model/0.weight").bytes.data())[2] = std::nanf(""); },
+       "array 'model/0.weight' holds a value that is not finite (element 3, counting from 1)"},
+      {"wider", [&](pc::TensorFile& f) { find(f, "model/0.bias").shape = {1, find(f, "model/0.bias").shape[0]}; },
+       "array 'model/0.bias' is <f4 "},
+      {"steps_missing", [&](pc::TensorFile& f) { f.meta.erase("adam_steps"); }, "meta: missing field 'adam_steps'"},
+      {"other_run", [&](pc::TensorFile& f) { f.meta["signature"]["format"] = "other"; },
+       "holds a run with other settings (format: \"other\" there, \"test\" now)"},
+  };
+  for (const Case& c : cases) {
+    const fs::path path = dir / (std::string(c.name) + ".tensors");
+    rewrite(good, path, c.edit);
     pl::NetworkReport report;
     const std::string message = pt::inputErrorOf([&] { pl::loadCheckpoint(path, kSignature, net, adam, report); });
-    EXPECT_NE(message.find(path.string()), std::string::npos) << c.name << ": " << message;
+    EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << c.name << ": " << message;
+    EXPECT_NE(message.find(c.message), std::string::npos) << c.name << ": " << message;
   }
-  // The well-formed one still loads.
-  writeCheckpoint(dir / "good.pt", net, adam, goodRecords, goodBest);
   pl::NetworkReport report;
-  pl::loadCheckpoint(dir / "good.pt", kSignature, net, adam, report);
+  pl::loadCheckpoint(good, kSignature, net, adam, report);  // the untouched one still loads
   EXPECT_EQ(report.epochs.size(), 2u);
-  EXPECT_EQ(report.bestEpoch, 2);
 }
 
-// Found by fuzzing (docs/reliability.md): LibTorch throws torch::jit::ErrorReport, not c10::Error, for a pickle that
-// names a type it cannot parse, and model.json readers called json.value("format", "") on a "format" of another type
-// (nlohmann's type_error). Both escaped as the CLI's "internal error" instead of naming the file.
-TEST(Checkpoint, DamagedArchivesFromFuzzingAreRefusedNamingTheFile) {
+// Found by fuzzing (docs/reliability.md, findings 11 to 13): LibTorch 1.13's archive reader threw
+// torch::jit::ErrorReport, leaked its zip reader, read a wild pointer and freed what it had not allocated on these
+// four mutated model.pt / checkpoint.pt files. Weights and checkpoints are tensor files now: the zips are refused
+// before LibTorch sees them.
+TEST(Checkpoint, LibTorchArchivesThatCrashedItAreRefusedNamingTheFile) {
   pl::Model model(tinySpec(), 1);
   torch::nn::Sequential& net = pl::ModelAccess::network(model);
-  const fs::path weights = pt::asset("fuzz_weights_unknown_type.pt");
-  std::string message = pt::inputErrorOf([&] { pl::loadWeights(net, weights, "the test network"); });
-  EXPECT_EQ(message.rfind(weights.string() + ": not the weights of the test network (truncated, or from another "
-                                             "model): ",
-                          0),
-            0u)
-      << message;
-  // A zip that is no LibTorch archive (LibTorch leaks its zip reader on it: tests/sanitize/lsan.supp).
   torch::optim::Adam adam(net->parameters());
-  pl::NetworkReport report;
-  const fs::path checkpoint = pt::asset("fuzz_checkpoint_zip_leak.pt");
-  message = pt::inputErrorOf([&] { pl::loadCheckpoint(checkpoint, kSignature, net, adam, report); });
-  EXPECT_EQ(message.rfind(checkpoint.string() + ": not a pixelcloth training checkpoint (truncated or damaged): ", 0), 0u)
-      << message;
+  for (const char* name : {"fuzz_weights_unknown_type.pt", "fuzz_weights_libtorch_segv.pt"}) {
+    const fs::path weights = pt::asset(name);
+    const std::string message = pt::inputErrorOf([&] { pl::loadWeights(net, weights, "the test network"); });
+    EXPECT_EQ(message.rfind(weights.string() + ": a zip file, as LibTorch archives are; ", 0), 0u) << message;
+  }
+  for (const char* name : {"fuzz_checkpoint_zip_leak.pt", "fuzz_checkpoint_libtorch_bad_free.pt"}) {
+    const fs::path checkpoint = pt::asset(name);
+    pl::NetworkReport report;
+    const std::string message =
+        pt::inputErrorOf([&] { pl::loadCheckpoint(checkpoint, kSignature, net, adam, report); });
+    EXPECT_EQ(message.rfind(checkpoint.string() + ": a zip file, as LibTorch archives are; ", 0), 0u) << message;
+    EXPECT_NE(message.find("delete it to start the run afresh"), std::string::npos) << message;
+  }
 }
 
 TEST(Checkpoint, ASidecarWhoseFormatIsNotAStringIsRefused) {

@@ -85,7 +85,7 @@ TEST(Train, ANecktieDecoderLearnsItsTrainingSamples) {
   EXPECT_LT(last, first / 3);
   EXPECT_GT(report.epochs.back().normalLoss, 0);  // the necktie's normal and edge terms are on by default
   EXPECT_GT(report.epochs.back().edgeLoss, 0);
-  for (const char* file : {"model.pt", "model.json", "log.csv", "checkpoint.pt"})
+  for (const char* file : {"model.tensors", "model.json", "log.csv", "checkpoint.tensors"})
     EXPECT_TRUE(fs::exists(out / file)) << file;
   std::ifstream log(out / "log.csv");
   int lines = 0;
@@ -141,7 +141,7 @@ TEST(Train, AResumedRunEndsWithTheWeightsOfAnUninterruptedOne) {
   other.learningRate = 1e-2;
   const std::string message = inputErrorOf([&] { pl::train(necktieDataset(), split, other); });
   EXPECT_NE(message.find("learning_rate"), std::string::npos) << message;
-  EXPECT_NE(message.find("checkpoint.pt"), std::string::npos) << message;
+  EXPECT_NE(message.find("checkpoint.tensors"), std::string::npos) << message;
 }
 
 namespace {
@@ -163,8 +163,8 @@ TEST(Train, PatchDecodersTrainInSubsetsIntoOneFolder) {
   const fs::path out = pixelcloth::testing::freshDir("patches");
   const pl::TrainReport first = pl::train(shirtDataset(), out, options);
   ASSERT_EQ(first.networks.size(), 2u);
-  EXPECT_TRUE(fs::exists(out / "patch_03" / "model.pt"));
-  EXPECT_TRUE(fs::exists(out / "patch_07" / "model.pt"));
+  EXPECT_TRUE(fs::exists(out / "patch_03" / "model.tensors"));
+  EXPECT_TRUE(fs::exists(out / "patch_07" / "model.tensors"));
   options.patches = {0};
   pl::train(shirtDataset(), out, options);
   const pl::TrainingData data = pl::loadTrainingData(shirtDataset(), pl::OffsetSpace::Local, {});
@@ -249,17 +249,17 @@ TEST(Train, WrongModelsAndDamagedCheckpointsAreRefused) {
   const fs::path out = pixelcloth::testing::freshDir("model");
   const std::string mismatch = inputErrorOf([&] { pl::train(necktieDataset(), out, whole); });
   EXPECT_NE(mismatch.find("necktie"), std::string::npos) << mismatch;
-  EXPECT_FALSE(fs::exists(out / "model.pt"));
+  EXPECT_FALSE(fs::exists(out / "model.tensors"));
 
   pl::train(necktieDataset(), out, necktieOptions(1));
   const pg::Garment tie = pd::datasetGarment(pd::readDatasetInfo(necktieDataset()));
   // Truncated weights.
-  const std::string bytes = pc::readTextFile(out / "model.pt");
-  pc::writeTextAtomically(out / "model.pt", bytes.substr(0, bytes.size() / 2));
+  const std::string bytes = pc::readTextFile(out / "model.tensors");
+  pc::writeTextAtomically(out / "model.tensors", bytes.substr(0, bytes.size() / 2));
   const std::string truncated = inputErrorOf([&] { pl::TrainedModel(out, tie); });
-  EXPECT_NE(truncated.find("model.pt"), std::string::npos) << truncated;
+  EXPECT_NE(truncated.find("model.tensors"), std::string::npos) << truncated;
   // Weights of another width.
-  pc::writeTextAtomically(out / "model.pt", bytes);
+  pc::writeTextAtomically(out / "model.tensors", bytes);
   nlohmann::json sidecar = pc::readJson(out / "model.json");
   sidecar["width"] = 0.5;
   pc::writeJson(out / "model.json", sidecar);
@@ -271,8 +271,8 @@ TEST(Train, WrongModelsAndDamagedCheckpointsAreRefused) {
   const std::string shirt = inputErrorOf([&] { pl::TrainedModel(out, pd::datasetGarment(pd::readDatasetInfo(shirtDataset()))); });
   EXPECT_NE(shirt.find("not of this tshirt"), std::string::npos) << shirt;
   // A truncated training checkpoint: the run says so instead of starting over silently.
-  const std::string checkpoint = pc::readTextFile(out / "checkpoint.pt");
-  pc::writeTextAtomically(out / "checkpoint.pt", checkpoint.substr(0, checkpoint.size() / 3));
+  const std::string checkpoint = pc::readTextFile(out / "checkpoint.tensors");
+  pc::writeTextAtomically(out / "checkpoint.tensors", checkpoint.substr(0, checkpoint.size() / 3));
   const std::string damaged = inputErrorOf([&] { pl::train(necktieDataset(), out, necktieOptions(2)); });
-  EXPECT_NE(damaged.find("checkpoint.pt"), std::string::npos) << damaged;
+  EXPECT_NE(damaged.find("checkpoint.tensors"), std::string::npos) << damaged;
 }

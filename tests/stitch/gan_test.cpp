@@ -261,29 +261,29 @@ TEST(Gan, TheSameSeedTrainsTheSameBlender) {
     EXPECT_EQ(report.epochs[k].generatorL1, t.report.epochs[k].generatorL1);
     EXPECT_EQ(report.epochs[k].regularisationErrorCm, t.report.epochs[k].regularisationErrorCm);
   }
-  EXPECT_EQ(pc::readTextFile(again / "model.pt"), pc::readTextFile(t.blender / "model.pt"));
+  EXPECT_EQ(pc::readTextFile(again / "model.tensors"), pc::readTextFile(t.blender / "model.tensors"));
 }
 
 TEST(Gan, DamagedMissingAndForeignFilesAreRefused) {
   const Trained& t = trained();
   const fs::path copy = pixelcloth::testing::freshDir("copy");
-  for (const char* name : {"model.json", "model.pt"}) fs::copy_file(t.blender / name, copy / name);
+  for (const char* name : {"model.json", "model.tensors"}) fs::copy_file(t.blender / name, copy / name);
   EXPECT_NO_THROW(ps::GanBlender(copy, t.data.garment));
-  const std::string weights = pc::readTextFile(copy / "model.pt");
-  pc::writeTextAtomically(copy / "model.pt", weights.substr(0, weights.size() / 2));
+  const std::string weights = pc::readTextFile(copy / "model.tensors");
+  pc::writeTextAtomically(copy / "model.tensors", weights.substr(0, weights.size() / 2));
   const std::string truncated = inputErrorOf([&] { ps::GanBlender(copy, t.data.garment); });
-  EXPECT_NE(truncated.find("model.pt"), std::string::npos) << truncated;
+  EXPECT_NE(truncated.find("model.tensors"), std::string::npos) << truncated;
   // A patch decoder's weights are not a generator's.
-  fs::copy_file(t.patches / "patch_00" / "model.pt", copy / "model.pt", fs::copy_options::overwrite_existing);
+  fs::copy_file(t.patches / "patch_00" / "model.tensors", copy / "model.tensors", fs::copy_options::overwrite_existing);
   const std::string foreign = inputErrorOf([&] { ps::GanBlender(copy, t.data.garment); });
-  EXPECT_NE(foreign.find("model.pt"), std::string::npos) << foreign;
-  pc::writeTextAtomically(copy / "model.pt", weights);
+  EXPECT_NE(foreign.find("model.tensors"), std::string::npos) << foreign;
+  pc::writeTextAtomically(copy / "model.tensors", weights);
   // Another width in model.json than the weights have.
   nlohmann::json info = pc::readJson(copy / "model.json");
   info["width"] = 0.125;
   pc::writeJson(copy / "model.json", info);
   const std::string wider = inputErrorOf([&] { ps::GanBlender(copy, t.data.garment); });
-  EXPECT_NE(wider.find("model.pt"), std::string::npos) << wider;
+  EXPECT_NE(wider.find("model.tensors"), std::string::npos) << wider;
   // A patch decoder's model.json, and another garment.
   fs::copy_file(t.patches / "patch_00" / "model.json", copy / "model.json", fs::copy_options::overwrite_existing);
   const std::string patch = inputErrorOf([&] { ps::GanBlender(copy, t.data.garment); });

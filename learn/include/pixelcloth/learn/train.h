@@ -63,7 +63,7 @@ struct NetworkReport {
   int patch = -1;  ///< the patch id of a patch decoder, -1 otherwise
   std::filesystem::path folder;
   std::vector<EpochRecord> epochs;
-  int bestEpoch = 0;  ///< the epoch whose weights model.pt holds: lowest regularisation error (else the last)
+  int bestEpoch = 0;  ///< the epoch whose weights model.tensors holds: lowest regularisation error (else the last)
   double bestErrorCm = std::numeric_limits<double>::quiet_NaN();
   int resumedAt = 0;  ///< epochs found done in the folder's checkpoint (0: a fresh start)
 };
@@ -74,10 +74,10 @@ struct TrainReport {
 };
 
 /// Trains `options.model` on the train split of a finished dataset folder and writes into `out` (created, or an
-/// existing folder): per network model.pt (LibTorch archive of the best epoch's weights), model.json (architecture,
+/// existing folder): per network model.tensors (a tensor file of the best epoch's weights, core/tensor_file.h), model.json (architecture,
 /// width, inputs, output, garment, space, loss, dataset and its manifest checksum, base folder, patch, epoch, errors),
-/// log.csv (one row per epoch) and checkpoint.pt (the last epoch's weights and optimizer state), each atomically;
-/// patch decoders in patch_NN/ subfolders. Run again with the same arguments, it resumes from checkpoint.pt (after a
+/// log.csv (one row per epoch) and checkpoint.tensors (the last epoch's weights and optimizer state), each atomically;
+/// patch decoders in patch_NN/ subfolders. Run again with the same arguments, it resumes from checkpoint.tensors (after a
 /// kill -9 too) and ends with the weights of an uninterrupted run; more epochs extend a finished run. Throws
 /// InputError for a model that does not fit the dataset, a base folder of another dataset, or a folder holding a run
 /// with other settings.

@@ -58,14 +58,14 @@ struct GanEpoch {
 struct GanReport {
   std::filesystem::path folder;
   std::vector<GanEpoch> epochs;
-  int bestEpoch = 0;  ///< the epoch whose generator model.pt holds: lowest regularisation error (else the last)
+  int bestEpoch = 0;  ///< the epoch whose generator model.tensors holds: lowest regularisation error (else the last)
   double seconds = 0;
 };
 
 /// Trains a blender for `patchModel` (a trained patch model, loaded for `data`'s garment) on `data` (loaded in the
 /// patch model's space, with its base folder in residual mode): the inputs are the patch model's predictions of the
 /// train split assembled by the per-vertex mean (`predictRows`), base added, rasterised to whole-garment cloth images;
-/// the targets are the ground-truth values' images. Writes into `out` (created): model.pt (the best epoch's
+/// the targets are the ground-truth values' images. Writes into `out` (created): model.tensors (the best epoch's
 /// generator), model.json (architecture "gan", width, the patch model folder, the dataset and its manifest checksum,
 /// space, epoch, errors), log.csv (one row per epoch), each atomically; no checkpoint (a run is minutes). Progress
 /// (epoch, step, rate, ETA) on stderr, one line per epoch with its errors. The same seed and inputs give the same
@@ -79,7 +79,7 @@ GanReport trainGan(const learn::TrainedModel& patchModel, const learn::TrainingD
 class GanBlender {
  public:
   /// Loads `folder` (trainGan's output) for `garment`. Throws InputError naming the file for a missing, truncated or
-  /// foreign model.pt or model.json, or a blender of another garment.
+  /// foreign model.tensors or model.json, or a blender of another garment.
   GanBlender(const std::filesystem::path& folder, const garment::Garment& garment);
   ~GanBlender();
   GanBlender(GanBlender&&) noexcept;

@@ -1,5 +1,6 @@
 #include "checkpoint.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "model_impl.h"
@@ -159,11 +160,20 @@ void loadCheckpoint(const fs::path& path, const nlohmann::json& signature, torch
   PIXELCLOTH_CHECK(records && records->dtype == "<f8" && records->shape.size() == 2 &&
                        records->shape[1] == kRecordFields && best && best->dtype == "<f8" && best->size() == 2,
                    name << ": its epoch records are missing or not " << kRecordFields << " float64 columns");
+  // The epochs are numbered 1, 2, ... in order, and the best is one of them (or 0, none yet): checked before they are
+  // converted to int (fuzzing found an epoch of 4e180, undefined behaviour as an int).
   report.epochs.clear();
   const double* f = records->data<double>();
-  for (std::int64_t i = 0; i < records->shape[0]; ++i, f += kRecordFields)
+  for (std::int64_t i = 0; i < records->shape[0]; ++i, f += kRecordFields) {
+    PIXELCLOTH_CHECK(f[0] == double(i + 1), name << ": epoch record " << i + 1 << " is for epoch " << f[0]
+                                                 << ", expected " << i + 1 << " (the records are damaged)");
     report.epochs.push_back({int(f[0]), f[1], f[2], f[3], f[4], f[5], f[6], f[7]});
-  report.bestEpoch = int(best->data<double>()[0]);
+  }
+  const double bestEpoch = best->data<double>()[0];
+  PIXELCLOTH_CHECK(bestEpoch >= 0 && bestEpoch <= double(records->shape[0]) && bestEpoch == std::floor(bestEpoch),
+                   name << ": best epoch " << bestEpoch << ", expected one of the " << records->shape[0]
+                        << " recorded (or 0)");
+  report.bestEpoch = int(bestEpoch);
   report.bestErrorCm = best->data<double>()[1];
 }
 

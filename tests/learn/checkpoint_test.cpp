@@ -120,6 +120,13 @@ TEST(Checkpoint, DamagedOrForeignContentsAreRefusedNamingTheFile) {
        "array 'model/0.weight' holds a value that is not finite (element 3, counting from 1)"},
       {"wider", [&](pc::TensorFile& f) { find(f, "model/0.bias").shape = {1, find(f, "model/0.bias").shape[0]}; },
        "array 'model/0.bias' is <f4 "},
+      // Found by fuzzing: an epoch of 4e180 was converted to int (UBSan).
+      {"epoch_overflow",
+       [&](pc::TensorFile& f) { reinterpret_cast<double*>(find(f, "records").bytes.data())[0] = 4.2482e180; },
+       "epoch record 1 is for epoch 4.2482e+180, expected 1 (the records are damaged)"},
+      {"best_epoch_not_recorded",
+       [&](pc::TensorFile& f) { reinterpret_cast<double*>(find(f, "best").bytes.data())[0] = 3; },
+       "best epoch 3, expected one of the 2 recorded (or 0)"},
       {"steps_missing", [&](pc::TensorFile& f) { f.meta.erase("adam_steps"); }, "meta: missing field 'adam_steps'"},
       {"other_run", [&](pc::TensorFile& f) { f.meta["signature"]["format"] = "other"; },
        "holds a run with other settings (format: \"other\" there, \"test\" now)"},

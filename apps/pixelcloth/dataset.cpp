@@ -1,4 +1,5 @@
-// pixelcloth dataset info|check|merge|import: look at, verify, merge and import dataset folders (docs/dataset.md).
+// pixelcloth dataset info|check|merge|import|rebase: look at, verify, merge, import and rebase dataset folders
+// (docs/dataset.md).
 #include "pixelcloth/data/dataset.h"
 
 #include <iostream>
@@ -103,12 +104,27 @@ void runImport(const DatasetArgs& args) {
   std::cout << "imported " << settings.count << " frames -> " << args.out << '\n';
 }
 
+void runRebase(const DatasetArgs& args) {
+  core::checkOutputFolder(args.out);
+  const std::filesystem::path bodyFolder(args.body);
+  std::error_code ec;
+  PIXELCLOTH_CHECK(!std::filesystem::exists(bodyFolder / "manifest.json", ec),
+                   "dataset rebase: --body " << args.body << " is a dataset folder; give a body folder (pixelcloth "
+                                             << "body --out), e.g. " << (bodyFolder / "body").string());
+  const body::Body body = body::loadBody(bodyFolder);
+  const nlohmann::json description = {{"kind", "folder"},
+                                      {"path", std::filesystem::absolute(bodyFolder).lexically_normal().string()}};
+  const data::DatasetSettings settings = data::rebaseDataset(args.folder, body, description, args.out);
+  std::cout << "rebased " << settings.rows() << " samples onto " << args.body << " -> " << args.out << '\n';
+}
+
 }  // namespace
 
 void registerDataset(CLI::App& app) {
   auto args = std::make_shared<DatasetArgs>();
   CLI::App* verb = app.add_subcommand(
-      "dataset", "Dataset folders (manifest.json + poses/positions/offsets/split .npy): info, check, merge, import");
+      "dataset", "Dataset folders (manifest.json + poses/positions/offsets/split .npy): info, check, merge, import, "
+      "rebase");
   verb->require_subcommand(1);
 
   CLI::App* info = verb->add_subcommand("info",
@@ -154,10 +170,19 @@ void registerDataset(CLI::App& app) {
                      "with that body and dressing");
   import->add_option("--seed", args->seed, "Seed of the train / regularisation / test split")->capture_default_str();
   import->add_option("--out", args->out, "Output dataset folder")->required();
-  import->callback([args] { runImport(*args);
-});
+  import->callback([args] { runImport(*args); });
 
-for (CLI::App* sub : verb->get_subcommands({})) sub->fallthrough();
-}  // namespace pixelcloth::apps
+  CLI::App* rebase = verb->add_subcommand(
+      "rebase",
+      "The same samples on another body (another shape, or corrupted skin weights): positions and poses kept, the "
+      "rest garment embedded afresh on the body and every sample's offsets recomputed on it");
+  rebase->add_option("folder", args->folder, "Dataset folder")->required();
+  rebase->add_option("--body", args->body, "Body folder (pixelcloth body --out) with the dataset body's skeleton")
+      ->required();
+  rebase->add_option("--out", args->out, "Output dataset folder")->required();
+  rebase->callback([args] { runRebase(*args); });
+
+  for (CLI::App* sub : verb->get_subcommands({})) sub->fallthrough();
+}
 
 }  // namespace pixelcloth::apps

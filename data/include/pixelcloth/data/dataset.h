@@ -264,6 +264,17 @@ struct ImportOptions {
   std::uint64_t seed = 0;                          ///< seeds the split
 };
 
+/// The same samples on another body (the paper's wrong-body-shape and broken-skinning experiments): `folder`'s positions
+/// and poses kept, its rest positions embedded afresh on `body` at their closest points (the pattern's u-direction
+/// taken from the old embedding's frames on the old rest body), and every sample's offsets recomputed in the frames
+/// of that embedding on `body` posed with the sample's pose. Written through DatasetWriter into `out` (resumable) with
+/// the same garment, seed, count, shard and split; the manifest's body is `bodyDescription` plus "rebased_from"
+/// (the old folder, its body and its manifest CRC-32), and the generator settings are the old ones with
+/// "rebased_stats" (the old solver statistics, which the new per-sample stats cannot carry). Throws `InputError`
+/// for a body whose skeleton differs from the dataset's body's (joint names and order), naming both.
+DatasetSettings rebaseDataset(const std::filesystem::path& folder, const body::Body& body,
+                              const nlohmann::json& bodyDescription, const std::filesystem::path& out);
+
 /// Imports garment shapes from another simulator or from capture: `objs` (one garment mesh per frame, the same
 /// vertex count and the same faces as `garment.mesh`, finite) with `poses` (readPoseSequence; as many as OBJs).
 /// Everything is validated before the dataset is written. Offsets are computed from the positions in the frames of

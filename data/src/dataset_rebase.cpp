@@ -1,0 +1,76 @@
+// A dataset's samples on another body: positions kept, embedding and offsets recomputed (docs/dataset.md, "Rebasing").
+#include <sstream>
+
+#include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/error.h"
+#include "pixelcloth/core/geometry.h"
+#include "pixelcloth/core/progress.h"
+#include "pixelcloth/data/dataset.h"
+
+namespace pixelcloth::data {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string joinedNames(const std::vector<std::string>& names) {
+  std::ostringstream out;
+  for (size_t i = 0; i < names.size(); ++i) out << (i ? ", " : "") << names[i];
+  return out.str();
+}
+
+}  // namespace
+
+DatasetSettings rebaseDataset(const fs::path& folder, const body::Body& body, const nlohmann::json& bodyDescription,
+                              const fs::path& out) {
+  const Dataset dataset = openDataset(folder);
+  const DatasetInfo& info = dataset.info;
+  const body::Body old = loadDatasetBody(folder);
+  PIXELCLOTH_CHECK(body.skeleton.names == old.skeleton.names,
+                   "dataset rebase: the body's skeleton has joints " << joinedNames(body.skeleton.names) << "; the "
+                                                                      << "poses of " << folder.string()
+                                                                      << " are for joints "
+                                                                      << joinedNames(old.skeleton.names));
+  const int V = dataset.vertexCount();
+  const garment::Embedding oldEmbedding = loadDatasetEmbedding(folder, old.mesh.numFaces());
+  const Eigen::MatrixX3d rest = loadDatasetRestPositions(folder, V);
+  const garment::Garment garment = datasetGarment(info);
+  core::checkOutputFolder(out);
+
+  // The pattern's u-direction at each cloth pixel, as the old embedding carries it on the old rest body.
+  const garment::EmbeddedFrames oldFrames = garment::embeddedFrames(old.mesh.V, old.mesh.F, oldEmbedding);
+  const garment::Embedding embedding = garment::embedClosest(body.mesh.V, body.mesh.F, rest, oldFrames.t);
+
+  DatasetSettings settings = info.settings;
+  settings.body = bodyDescription;
+  settings.body["rebased_from"] = {{"folder", fs::absolute(folder).lexically_normal().string()},
+                                   {"body", info.settings.body},
+                                   {"manifest_crc32", fileCrc32(folder / "manifest.json")}};
+  nlohmann::json oldStats = info.manifest.contains("stats") ? info.manifest["stats"] : nlohmann::json();
+  settings.generator["rebased_stats"] = oldStats;
+
+  DatasetWriter writer(out, settings, body, garment, rest, embedding);
+  const std::vector<int> pending = writer.pending();
+  core::Progress progress("dataset rebase", static_cast<std::int64_t>(pending.size()));
+  const std::string posesName = (folder / "poses.npy").string();
+  for (int index : pending) {
+    const int row = index - settings.first();
+    Sample sample;
+    sample.pose = dataset.pose(row);
+    sample.positions = dataset.positionsOf(row);
+    const body::Pose pose = body::Pose::fromLeading(sample.pose, posesName);
+    const garment::EmbeddedFrames frames = garment::embeddedFrames(body.posedVertices(pose), body.mesh.F, embedding);
+    const Eigen::MatrixX3d positions = sample.positions.cast<double>();
+    sample.offsets = garment::offsetsFromPositions(frames, positions).cast<float>();
+    const Eigen::VectorXd ratio = core::areaRatios(positions, garment.mesh);
+    sample.stats.minAreaRatio = ratio.minCoeff();
+    sample.stats.maxAreaRatio = ratio.maxCoeff();
+    writer.add(index, sample);
+    progress.advance();
+  }
+  progress.finish();
+  writer.finish();
+  return settings;
+}
+
+}  // namespace pixelcloth::data

@@ -221,7 +221,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
       {"images",
        {"--garment", "--values", "--image", "--out", "--width", "--height", "--padding", "default", "--dataset",
         "--samples", "--all"}},
-      {"dataset", {"info", "check", "merge", "import"}},
+      {"dataset", {"info", "check", "merge", "import", "rebase"}},
       {"edit",
        {"--image", "--out", "--shift", "--inflate", "--inflate-add", "--brush", "--blend", "--mask", "--region",
         "default"}},
@@ -885,6 +885,24 @@ TEST_F(CliDatasetTest, ImportInfoCheckMergeImages) {
       refused(runPixelcloth({"dataset", "merge", "--out", (work_ / "merged2").string(), (work_ / "damaged").string()}),
               {"positions.npy", "CRC-32"}));
   EXPECT_FALSE(fs::exists(work_ / "merged2" / "manifest.json"));
+}
+
+TEST_F(CliDatasetTest, RebaseOntoABodyFolderAndRefuseADatasetAsTheBody) {
+  const fs::path data = work_ / "data";
+  ASSERT_EQ(import(work_ / "objs", work_ / "poses.csv", data).status, 0);
+  const fs::path rebased = work_ / "rebased";
+  CliRun run = runPixelcloth({"dataset", "rebase", data.string(), "--body", body_.string(), "--out", rebased.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_NE(run.out.find("rebased 3 samples"), std::string::npos) << run;
+  EXPECT_EQ(runPixelcloth({"dataset", "check", rebased.string()}).status, 0);
+  EXPECT_EQ(readFile(rebased / "positions.npy"), readFile(data / "positions.npy"));
+  const nlohmann::json manifest = nlohmann::json::parse(readFile(rebased / "manifest.json"));
+  EXPECT_EQ(manifest["body"]["rebased_from"]["folder"], fs::absolute(data).lexically_normal().string());
+
+  EXPECT_TRUE(refused(runPixelcloth({"dataset", "rebase", data.string(), "--body", data.string(), "--out",
+                                     (work_ / "wrong").string()}),
+                      {"is a dataset folder", "body folder", (data / "body").string()}));
+  EXPECT_FALSE(fs::exists(work_ / "wrong"));
 }
 
 TEST_F(CliDatasetTest, RefusesBadInputsNamingTheFile) {

@@ -58,7 +58,8 @@ TEST(TensorFile, RoundTripKeepsNamesOrderDtypesShapesAndMeta) {
   EXPECT_EQ(back.find("steps")->data<std::int64_t>()[0], 7);
   EXPECT_EQ(back.find("missing"), nullptr);
   // Every array starts on a 64-byte boundary.
-  for (const auto& entry : headerOf(pc::readTextFile(dir / "a.tensors"))["arrays"])
+  const nlohmann::json header = headerOf(pc::readTextFile(dir / "a.tensors"));  // kept: the loop borrows from it
+  for (const auto& entry : header["arrays"])
     EXPECT_EQ(entry["offset"].get<std::uint64_t>() % 64, 0u) << entry.dump();
 }
 

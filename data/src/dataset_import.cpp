@@ -15,6 +15,7 @@
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/data/dataset.h"
+#include "dataset_internal.h"
 
 namespace pixelcloth::data {
 
@@ -151,6 +152,21 @@ std::vector<Eigen::VectorXf> readPoseSequence(const fs::path& path, int poseSize
   return poses;
 }
 
+Sample detail::sampleOfPositions(const Eigen::VectorXf& pose, int poseSize, const Eigen::MatrixX3d& positions,
+                                 const body::Body& body, const garment::Garment& garment,
+                                 const garment::Embedding& embedding, const std::string& context) {
+  const body::Pose posed = body::Pose::fromLeading(pose.head(poseSize), context);
+  const garment::EmbeddedFrames frames = garment::embeddedFrames(body.posedVertices(posed), body.mesh.F, embedding);
+  Sample sample;
+  sample.pose = pose;
+  sample.positions = positions.cast<float>();
+  sample.offsets = garment::offsetsFromPositions(frames, positions).cast<float>();
+  const Eigen::VectorXd ratio = core::areaRatios(positions, garment.mesh);
+  sample.stats.minAreaRatio = ratio.minCoeff();
+  sample.stats.maxAreaRatio = ratio.maxCoeff();
+  return sample;
+}
+
 DatasetSettings importDataset(const std::vector<fs::path>& objs, const fs::path& posesFile, const body::Body& body,
                               const garment::Garment& garment, const Eigen::MatrixX3d& restPositions,
                               const garment::Embedding& embedding, const fs::path& out, const ImportOptions& options) {
@@ -203,17 +219,8 @@ DatasetSettings importDataset(const std::vector<fs::path>& objs, const fs::path&
   const std::vector<int> pending = writer.pending();
   core::Progress progress("dataset import", static_cast<std::int64_t>(pending.size()));
   for (int i : pending) {
-    const Eigen::MatrixX3d positions = readFrame(i);
-    const body::Pose pose = body::Pose::fromLeading(poses[i].head(settings.poseSize), posesFile.string());
-    const garment::EmbeddedFrames frames = garment::embeddedFrames(body.posedVertices(pose), body.mesh.F, embedding);
-    Sample sample;
-    sample.pose = poses[i];
-    sample.positions = positions.cast<float>();
-    sample.offsets = garment::offsetsFromPositions(frames, positions).cast<float>();
-    const Eigen::VectorXd ratio = core::areaRatios(positions, garment.mesh);
-    sample.stats.minAreaRatio = ratio.minCoeff();
-    sample.stats.maxAreaRatio = ratio.maxCoeff();
-    writer.add(i, sample);
+    writer.add(i, detail::sampleOfPositions(poses[i], settings.poseSize, readFrame(i), body, garment, embedding,
+                                            posesFile.string()));
     progress.advance();
   }
   progress.finish();

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "pixelcloth/data/dataset.h"
+
 namespace pixelcloth::data::detail {
 
 inline constexpr const char* kManifest = "manifest.json";
@@ -54,5 +56,12 @@ bool sameBytes(const std::filesystem::path& a, const std::filesystem::path& b);
 /// Throws `InputError` naming `path` and the first non-finite value's position when a float32 block is not finite.
 void checkFinite(const float* values, std::int64_t count, const std::string& path, std::int64_t firstElement,
                  std::int64_t rowLength);
+
+/// A sample of given world positions (imported or rebased, so no solver ran): offsets in the frames of `embedding` on
+/// `body` posed with the leading `poseSize` values of `pose` (`context`, a file, prefixes a bad pose's message), and the
+/// triangle area ratios as its statistics.
+Sample sampleOfPositions(const Eigen::VectorXf& pose, int poseSize, const Eigen::MatrixX3d& positions,
+                         const body::Body& body, const garment::Garment& garment, const garment::Embedding& embedding,
+                         const std::string& context);
 
 }  // namespace pixelcloth::data::detail

@@ -3,8 +3,8 @@
 
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
-#include "pixelcloth/core/geometry.h"
 #include "pixelcloth/core/progress.h"
+#include "dataset_internal.h"
 #include "pixelcloth/data/dataset.h"
 
 namespace pixelcloth::data {
@@ -55,17 +55,8 @@ DatasetSettings rebaseDataset(const fs::path& folder, const body::Body& body, co
   const std::string posesName = (folder / "poses.npy").string();
   for (int index : pending) {
     const int row = index - settings.first();
-    Sample sample;
-    sample.pose = dataset.pose(row);
-    sample.positions = dataset.positionsOf(row);
-    const body::Pose pose = body::Pose::fromLeading(sample.pose, posesName);
-    const garment::EmbeddedFrames frames = garment::embeddedFrames(body.posedVertices(pose), body.mesh.F, embedding);
-    const Eigen::MatrixX3d positions = sample.positions.cast<double>();
-    sample.offsets = garment::offsetsFromPositions(frames, positions).cast<float>();
-    const Eigen::VectorXd ratio = core::areaRatios(positions, garment.mesh);
-    sample.stats.minAreaRatio = ratio.minCoeff();
-    sample.stats.maxAreaRatio = ratio.maxCoeff();
-    writer.add(index, sample);
+    writer.add(index, detail::sampleOfPositions(dataset.pose(row), settings.poseSize, dataset.positionsOf(row).cast<double>(),
+                                        body, garment, embedding, posesName));
     progress.advance();
   }
   progress.finish();

@@ -40,6 +40,7 @@ void SimulationOptions::validate() const {
   PIXELCLOTH_CHECK(
       minAreaRatio > 0 && minAreaRatio < 1 && maxAreaRatio > 1,
       "simulation: need 0 < min area ratio < 1 < max area ratio, got " << minAreaRatio << " and " << maxAreaRatio);
+  PIXELCLOTH_CHECK(finalRecheckEvery >= 1, "simulation: final recheck interval must be >= 1, got " << finalRecheckEvery);
   PIXELCLOTH_CHECK(maxPenetration > 0, "simulation: max penetration must be positive, got " << maxPenetration);
 }
 
@@ -178,9 +179,11 @@ data::Sample GarmentSimulator::simulate(const body::Pose& pose) {
         garment::offsetsFromPositions(garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), x);
     placeBody(partialPose(pose, static_cast<double>(step) / steps));
     x = garment::positionsFromOffsets(garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), offsets);
+    if (step == steps) solver_->setContactRecheckEvery(options_.finalRecheckEvery);
     report = solver_->relax(x, step < steps ? options_.iterationsPerStep : options_.finalIterations);
     iterations += report.iterations;
   }
+  solver_->setContactRecheckEvery(options_.solver.contactRecheckEvery);
   data::Sample sample;
   sample.stats = measure(x);
   sample.stats.iterations = iterations;

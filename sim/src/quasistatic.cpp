@@ -470,6 +470,11 @@ void QuasistaticSolver::setFriction(double friction) {
   options_.friction = friction;
 }
 
+void QuasistaticSolver::setContactRecheckEvery(int iterations) {
+  PIXELCLOTH_CHECK(iterations >= 1, "solver: contact recheck interval must be >= 1, got " << iterations);
+  options_.contactRecheckEvery = iterations;
+}
+
 void QuasistaticSolver::setPinTargets(const Eigen::MatrixX3d& targets) {
   PIXELCLOTH_CHECK(targets.rows() == static_cast<int>(impl_->pinned.size()),
                    "solver: " << targets.rows() << " pin targets for " << impl_->pinned.size() << " pins");

@@ -100,7 +100,7 @@ TEST_F(LearnCli, EveryModelTrainsPredictsAndIsEvaluated) {
   EXPECT_EQ(filesUnder(predicted), (std::vector<std::string>{"sample_000000.exr", "sample_000000.obj",
                                                              "sample_000000.png", "sample_000007.exr",
                                                              "sample_000007.obj", "sample_000007.png"}));
-  EXPECT_EQ(pixelcloth::core::readMesh(predicted / "sample_000000.obj").numVertices(), 2989);
+  EXPECT_EQ(pixelcloth::core::readMesh(predicted / "sample_000000.obj").numVertices(), 2958);
   // predict, pose form.
   run = runPixelcloth({"markers", "--dataset", dataset().string(), "--sample", "2", "--pose-out",
                        (work_ / "pose.json").string(), "--out", (work_ / "markers.json").string()});

@@ -252,8 +252,9 @@ TEST(CageSplineSolver, PlacesEveryCageVertexAndHitsTheMarkers) {
     double error = 0;
     for (int v : solver.cageVertices()) error += (fit.positions.row(v) - truth.row(v)).norm();
     error /= solver.cageVertices().size();
-    // Straight segments cut the corners of the rest shirt's loops; the curves follow them.
-    EXPECT_LT(error, method == pcg::CurveMethod::Linear ? 0.015 : 0.005) << "mean cage error " << error << " m";
+    // Straight segments cut the corners of the rest shirt's loops; the curves follow them (within 5.5 mm: the
+    // deeper armhole's longer bicep loops put Catmull-Rom at 5.0 mm).
+    EXPECT_LT(error, method == pcg::CurveMethod::Linear ? 0.015 : 0.0055) << "mean cage error " << error << " m";
   }
 }
 

@@ -188,8 +188,9 @@ TEST(TShirt, StitchedSeamsShareVerticesOnBothLayouts) {
     ASSERT_NE(g.findSeam(name), nullptr) << name;
     EXPECT_TRUE(g.findSeam(name)->joinsLayouts) << name;
   }
-  // The side seam is 0.67 - 0.19 = 0.48 long in both layouts.
-  EXPECT_NEAR(uvLength(g, g.findSeam("side_left")->vertices, 0), 0.48, 1e-9);
+  // The side seam runs from the armpit to the hem: length - armpitDepth in both layouts.
+  const pg::TShirtOptions options;
+  EXPECT_NEAR(uvLength(g, g.findSeam("side_left")->vertices, 0), options.length - options.armpitDepth, 1e-9);
 }
 
 TEST(TShirt, ArmholesAreEdgeChainsInsideOneLayout) {

@@ -1,0 +1,42 @@
+// The paper's acceptance test over the sampler's poses: most simulated T-shirt poses are kept, and raised arms (the
+// poses a tight armhole used to lose) are kept about as often as the rest.
+#include <gtest/gtest.h>
+
+#include "pixelcloth/cage/body_cage.h"
+#include "pixelcloth/cage/garment_cage.h"
+#include "pixelcloth/sim/garment_sim.h"
+#include "pixelcloth/sim/generate.h"
+
+namespace pixelcloth::sim {
+namespace {
+
+TEST(SampledTShirtPoses, MostPassThePapersAreaTestRaisedArmsIncluded) {
+  const body::Body body = body::makeMannequin();
+  const garment::Garment shirt = garment::makeTShirt();
+  const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), shirt, cage::garmentCage(shirt));
+  constexpr int kPoses = 48;
+  std::vector<body::Pose> poses;
+  for (int i = 0; i < kPoses; ++i) poses.push_back(samplePose(body, "tshirt", 7, i, 0));
+  const std::vector<data::SampleStats> stats = simulatePoses(body, shirt, dressing, poses, {}, 0, true);
+
+  int kept = 0, raised = 0, raisedKept = 0;
+  for (int i = 0; i < kPoses; ++i) {
+    const bool ok = stats[i].rejection == data::Rejection::None;
+    kept += ok;
+    if (poses[i].toEulerDegrees()(5, 2) > 30) {  // l_arm raised more than 30 degrees above the T-pose
+      ++raised;
+      raisedKept += ok;
+    }
+    if (ok) {
+      EXPECT_GE(stats[i].minAreaRatio, 0.25) << "pose " << i;
+      EXPECT_LE(stats[i].maxAreaRatio, 2.0) << "pose " << i;
+      EXPECT_LE(stats[i].maxPenetration, 0.002) << "pose " << i;
+    }
+  }
+  EXPECT_GE(kept, 41) << "of " << kPoses << " sampled poses (85% is the bar)";
+  ASSERT_GE(raised, 8);
+  EXPECT_GT(2 * raisedKept, raised) << raisedKept << " of " << raised << " poses with the left arm raised kept";
+}
+
+}  // namespace
+}  // namespace pixelcloth::sim

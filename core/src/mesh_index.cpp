@@ -88,7 +88,9 @@ MeshIndex::MeshIndex(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) : imp
   for (int f = 0; f < F.rows(); ++f)
     impl_->triangles.emplace_back(toPoint(V.row(F(f, 0))), toPoint(V.row(F(f, 1))), toPoint(V.row(F(f, 2))));
   impl_->tree.insert(impl_->triangles.cbegin(), impl_->triangles.cend());
-  impl_->tree.accelerate_distance_queries();
+  // The tree now; the k-d tree that seeds a query without a hint only on the first such query (CGAL builds it then,
+  // under a lock): a caller that always passes a hint, as the simulator's contacts do, never pays for it.
+  impl_->tree.build();
 }
 
 MeshIndex::~MeshIndex() = default;

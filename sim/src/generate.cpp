@@ -64,6 +64,7 @@ nlohmann::json simulationSettings(const SimulationOptions& s) {
           {"step_degrees", s.stepDegrees},
           {"iterations_per_step", s.iterationsPerStep},
           {"final_iterations", s.finalIterations},
+          {"final_recheck_every", s.finalRecheckEvery},
           {"min_area_ratio", s.minAreaRatio},
           {"max_area_ratio", s.maxAreaRatio},
           {"pinned_vertices", s.pinned.size()},

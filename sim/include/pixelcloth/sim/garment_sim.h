@@ -18,8 +18,11 @@ namespace pixelcloth::sim {
 struct SimulationOptions {
   QuasistaticOptions solver;
   double stepDegrees = 25;     ///< continuation: no joint turns by more than this between two steps
-  int iterationsPerStep = 20;  ///< solver iterations per continuation step before the last
-  int finalIterations = 150;   ///< at most this many iterations at the target pose (fewer if converged)
+  /// Solver iterations per continuation step before the last, and at most at the target pose (fewer if converged).
+  /// Of 288 sampled T-shirt poses (seeds 7, 1, 3), 20 and 150 kept 247, 8 and 60 kept 244, 6 and 50 keep 243 in a
+  /// third of the iterations: past about 50 the count moves by a few poses either way, as it does for any change.
+  int iterationsPerStep = 6;
+  int finalIterations = 50;
   /// At the target pose, contacts look again in the body part's tree this often (QuasistaticOptions::
   /// contactRecheckEvery): where the arm folds the part's skin, a walk settles on the wrong sheet and leaves the
   /// vertex inside, and it is the target pose that is measured.

@@ -29,5 +29,7 @@ void registerPredict(CLI::App& app);
 void registerEvaluate(CLI::App& app);
 void registerPca(CLI::App& app);
 void registerStitch(CLI::App& app);
+/// `plot`: a line chart of a small JSON table (scripts/experiments' figures).
+void registerPlot(CLI::App& app);
 
 }  // namespace pixelcloth::apps

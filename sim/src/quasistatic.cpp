@@ -117,16 +117,21 @@ struct ColliderState {
     return c;
   }
 
+  /// The AABB tree of the current placement, built on first use after the vertices moved.
+  const core::MeshIndex& tree() {
+    if (!index) index = std::make_unique<core::MeshIndex>(mesh.V, mesh.F);
+    return *index;
+  }
+
   /// Exact closest point (AABB tree). `hint`: a face near the answer (the vertex's last closest face), whose closest
   /// point starts the search with a small radius instead of the tree's own first guess.
   Closest global(const Eigen::Vector3d& p, int hint = -1) {
-    if (!index) index = std::make_unique<core::MeshIndex>(mesh.V, mesh.F);
-    if (hint < 0) return onFace(index->closest(p).face, p);
+    if (hint < 0) return onFace(tree().closest(p).face, p);
     const Closest start = local(p, hint);
     core::MeshHit near;
     near.face = start.face;
     near.point = start.point;
-    const int f = index->closest(p, near).face;
+    const int f = tree().closest(p, near).face;
     return f == start.face ? start : onFace(f, p);
   }
 
@@ -138,11 +143,10 @@ struct ColliderState {
     if (hint < 0) return global(p);
     const Closest start = local(p, hint);
     if (start.squared <= radius * radius) return global(p, start.face);
-    if (!index) index = std::make_unique<core::MeshIndex>(mesh.V, mesh.F);
     core::MeshHit bound;  // a point at the radius, charged to the walk's face: the search keeps it unless a face is closer
     bound.face = start.face;
     bound.point = p + radius * (start.point - p) / std::sqrt(start.squared);
-    const int f = index->closest(p, bound).face;
+    const int f = tree().closest(p, bound).face;
     const Closest c = f == start.face ? start : onFace(f, p);
     found = c.squared < radius * radius;
     return found ? c : start;

@@ -176,7 +176,7 @@ void benchLearning(int repeats) {
 }
 
 /// Issue 14: the PCA filter's fit at the size the paper's data has, rank 2048 of 16384 samples x 8967 values (the
-/// T-shirt's 2958 vertices), by the randomised range finder and by the Gram matrix; once each (each takes seconds).
+/// T-shirt's 3000 vertices), by the randomised range finder and by the Gram matrix; once each (each takes seconds).
 void benchStitching() {
   const Eigen::Index samples = 16384, values = 8967;
   // Garment-like data: a few hundred strong directions over a weak full-rank floor, so the spectrum decays.

@@ -431,8 +431,18 @@ void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions&
         tally.reject(stats[k].rejection);
       }
     }
-    writePng(report.folder() / "poses" / "joint_histograms.png", renderJointHistograms(drawn, kept));
+    writePng(report.folder() / "poses" / "joint_histograms.png",
+             renderJointHistograms({{"drawn", drawn, {175, 175, 175}},
+                                    {"simulated (not pruned: arm in torso)", survivors, {140, 185, 235}},
+                                    {"kept (area test, penetration)", kept, {30, 80, 190}}}));
+    auto bin = [](const JointBinLoss& loss) {
+      return nlohmann::json{{"joint", loss.joint},          {"axis", loss.axis},  {"lower_degrees", loss.lowerDegrees},
+                            {"upper_degrees", loss.upperDegrees}, {"before", loss.before}, {"after", loss.after},
+                            {"kept_fraction", loss.keptFraction()}};
+    };
     report.json()["pose_sampling"] = {
+        {"worst_bin_simulation", bin(worstJointBin(survivors, kept))},
+        {"worst_bin_overall", bin(worstJointBin(drawn, kept))},
         {"drawn", drawn.size()},
         {"kept", kept.size()},
         {"rejected", tally.rejected},
@@ -449,12 +459,21 @@ void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions&
          << poses["mean_seconds_per_simulation"].get<double>()
          << " s per simulation on one core; deepest kept vertex inside its body part "
          << poses["max_penetration_mm_kept"].get<double>() << " mm";
+    auto describe = [&](const nlohmann::json& bin, const char* stage) {
+      text << "; the joint-angle bin (of those with at least 10 poses) that loses most " << stage << " is "
+           << bin["joint"].get<std::string>() << " " << bin["axis"].get<std::string>() << " in ["
+           << bin["lower_degrees"].get<double>() << ", " << bin["upper_degrees"].get<double>() << "] degrees, "
+           << bin["after"].get<int>() << " of " << bin["before"].get<int>() << " kept";
+    };
+    describe(poses["worst_bin_simulation"], "to simulation");
+    describe(poses["worst_bin_overall"], "to pruning and simulation together");
     report.section(
         "Pose sampling and simulation filtering",
         std::to_string(demo.filterPoses) +
             " poses from the appendix sampler (grey), each pruned when an arm falls inside the torso or else "
-            "simulated on the T-shirt and kept only when it passes the paper's test (no triangle shrinks by more "
-            "than 75% or grows by more than 100%) and no vertex ends more than 2 mm inside its body part (blue): " +
+            "simulated on the T-shirt (light blue) and kept only when it passes the paper's test (no triangle "
+            "shrinks by more than 75% or grows by more than 100%) and no vertex ends more than 2 mm inside its body "
+            "part (blue); bars are counts on one scale: " +
             text.str() + ".",
         {"poses/joint_histograms.png"});
   }

@@ -33,9 +33,10 @@ TEST(SampledTShirtPoses, MostPassThePapersAreaTestRaisedArmsIncluded) {
       EXPECT_LE(stats[i].maxPenetration, 0.002) << "pose " << i;
     }
   }
-  // 83 measured (docs/simulation.md: 245 of 288 over three seeds); any change of the solver moves this by a few poses
-  // either way, so the test guards the rate (the old tight armhole kept 73) rather than the last pose of it.
-  EXPECT_GE(kept, 80) << "of " << kPoses << " sampled poses (85% is the goal over many)";
+  // 86 measured (docs/simulation.md: 486 of 576 over six seeds; this seed is one of the kinder ones). Any change of
+  // the solver moves this by a few poses either way, so the test guards the rate (the shirt with the 0.23 m armpit
+  // and 0.19 m sleeve hem kept 81, the old tight armhole 73) rather than the last pose of it.
+  EXPECT_GE(kept, 82) << "of " << kPoses << " sampled poses (85% is the goal over many)";
   ASSERT_GE(raised, 16);
   EXPECT_GT(2 * raisedKept, raised) << raisedKept << " of " << raised << " poses with the left arm raised kept";
 }

@@ -93,6 +93,16 @@ TEST(Text, DigitsAndLettersAreDrawnWithinTheirExtent) {
   pixelcloth::viz::drawText(blank, {12, 12}, "88", {0, 0, 0}, 3);
   EXPECT_EQ(blank.at(0, 0)[0], 255);
   EXPECT_THROW(pixelcloth::viz::drawText(blank, {0, 0}, "1", {0, 0, 0}, 0), pixelcloth::core::InputError);
+  // Punctuation of axis labels and legends has glyphs: each of these leaves ink in its own cell.
+  const std::string punctuation = ",:()/%+=";
+  pixelcloth::core::RgbImage marks(6 * static_cast<int>(punctuation.size()), 7);
+  pixelcloth::viz::drawText(marks, {0, 0}, punctuation, {0, 0, 0}, 1);
+  for (size_t k = 0; k < punctuation.size(); ++k) {
+    int ink = 0;
+    for (int y = 0; y < 7; ++y)
+      for (int x = 6 * static_cast<int>(k); x < 6 * static_cast<int>(k) + 5; ++x) ink += marks.at(x, y)[0] == 0;
+    EXPECT_GT(ink, 2) << punctuation[k];
+  }
 }
 
 TEST(BasisFigures, EveryShapeFilledBothWays) {

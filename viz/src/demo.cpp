@@ -433,7 +433,7 @@ void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions&
     }
     writePng(report.folder() / "poses" / "joint_histograms.png",
              renderJointHistograms({{"drawn", drawn, {175, 175, 175}},
-                                    {"simulated (not pruned: arm in torso)", survivors, {140, 185, 235}},
+                                    {"simulated (after pruning arms in the torso)", survivors, {140, 185, 235}},
                                     {"kept (area test, penetration)", kept, {30, 80, 190}}}));
     auto bin = [](const JointBinLoss& loss) {
       return nlohmann::json{{"joint", loss.joint},          {"axis", loss.axis},  {"lower_degrees", loss.lowerDegrees},

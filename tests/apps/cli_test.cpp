@@ -720,6 +720,12 @@ TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
   }
   EXPECT_GT(pictures, 0) << "index.html shows no pictures";
   EXPECT_TRUE(noTemporaries(out));
+
+  // Run again into the same folder, as a user does after pulling: the datasets are made afresh, so the models the first
+  // run left were trained on other samples; the demo retrains them instead of refusing to resume.
+  run = runPixelcloth({"demo", "--out", out.string(), "--poses", "2", "--filter-poses", "16", "--tshirt-samples", "10"});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_TRUE(noTemporaries(out));
 }
 
 // ---------------------------------------------------------------------------------------------------------------------

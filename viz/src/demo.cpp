@@ -521,6 +521,8 @@ void demoNetworks(Report& report) {
     options.batch = 2;
     options.learningRate = 2e-3;
     options.quiet = true;
+    // Fresh every run, like the datasets: a run left by an earlier demo was trained on other samples and would refuse.
+    fs::remove_all(report.folder() / "model_necktie");
     trained = learn::train(report.folder() / "dataset_necktie", report.folder() / "model_necktie", options).networks.front();
     writePng(report.folder() / "model_necktie" / "training.png", renderTrainingCurves(trained, "necktie width 0.25"));
     const learn::EpochRecord& best = trained.epochs[trained.bestEpoch - 1];

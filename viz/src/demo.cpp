@@ -53,9 +53,7 @@ Pose showPose() {
 /// A small simulated dataset of one garment, checked, with a contact sheet: posed body, draped garment, cloth image.
 void simulatedDataset(Report& report, const body::Body& body, std::uint64_t seed, const std::string& name, int count) {
   const std::string folder = "dataset_" + name;
-  // The demo owns its report folder: a dataset left there by an earlier version (other settings) would refuse to
-  // resume, so each run makes its datasets afresh.
-  fs::remove_all(report.folder() / folder);
+  report.freshFolder(folder);
   sim::GenerateOptions generate;
   generate.garment = name;
   generate.count = count;
@@ -521,9 +519,7 @@ void demoNetworks(Report& report) {
     options.batch = 2;
     options.learningRate = 2e-3;
     options.quiet = true;
-    // Fresh every run, like the datasets: a run left by an earlier demo was trained on other samples and would refuse.
-    fs::remove_all(report.folder() / "model_necktie");
-    trained = learn::train(report.folder() / "dataset_necktie", report.folder() / "model_necktie", options).networks.front();
+    trained = learn::train(report.folder() / "dataset_necktie", report.freshFolder("model_necktie"), options).networks.front();
     writePng(report.folder() / "model_necktie" / "training.png", renderTrainingCurves(trained, "necktie width 0.25"));
     const learn::EpochRecord& best = trained.epochs[trained.bestEpoch - 1];
     report.json()["training"] = {{"model", "necktie"},

@@ -66,8 +66,7 @@ void demoLearning(Report& report, const body::Body& body, const DemoOptions& dem
         options.residual = baseFolder;
         options.model.inputSize = body::kPoseSize + 3 * report.json()["bases_tshirt"]["markers"].get<int>();
       }
-      fs::remove_all(report.folder() / m.folder);  // an earlier demo's run was trained on other samples
-      const learn::TrainReport trained = learn::train(datasetFolder, report.folder() / m.folder, options);
+      const learn::TrainReport trained = learn::train(datasetFolder, report.freshFolder(m.folder), options);
       const learn::NetworkReport& first = trained.networks.front();
       writePng(report.folder() / m.folder / "training.png",
                renderTrainingCurves(first, m.name + (first.patch >= 0 ? " (patch " + std::to_string(first.patch) + ")"

@@ -59,8 +59,7 @@ std::string paperTables(Report& report, const fs::path& dataset, const garment::
     options.batch = 4;
     options.learningRate = 2e-3;
     options.quiet = true;
-    fs::remove_all(report.folder() / "paper_tables" / folder);  // an earlier demo's run was trained on other samples
-    learn::train(dataset, report.folder() / "paper_tables" / folder, options);
+    learn::train(dataset, report.freshFolder(fs::path("paper_tables") / folder), options);
     return report.folder() / "paper_tables" / folder;
   };
   std::ostringstream md;
@@ -107,8 +106,7 @@ void demoSeams(Report& report, const body::Body& body, const DemoOptions& demo) 
     options.width = 0.0625;
     options.epochs = 3;
     options.quiet = true;
-    fs::remove_all(ganFolder);
-    const stitch::GanReport gan = stitch::trainGan(model, data, options, ganFolder);
+    const stitch::GanReport gan = stitch::trainGan(model, data, options, report.freshFolder(ganFolder.filename()));
     json["gan"] = {{"width", options.width}, {"epochs", options.epochs}, {"best_epoch", gan.bestEpoch},
                    {"seconds", gan.seconds}, {"parameters", stitch::ganSummary(options.width)["generator"]["parameters"]}};
   });

@@ -42,6 +42,12 @@ Report::Report(const std::filesystem::path& folder)
   ensureOutputFolder(folder_);
 }
 
+std::filesystem::path Report::freshFolder(const std::filesystem::path& relative) const {
+  const std::filesystem::path path = folder_ / relative;
+  std::filesystem::remove_all(path);
+  return path;
+}
+
 void Report::step(const std::string& name, const std::function<void()>& work) {
   PIXELCLOTH_INFO("demo: " << name << " ...");
   const auto start = std::chrono::steady_clock::now();

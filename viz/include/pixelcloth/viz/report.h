@@ -17,6 +17,10 @@ class Report {
   explicit Report(const std::filesystem::path& folder);
 
   const std::filesystem::path& folder() const { return folder_; }
+  /// folder() / `relative`, emptied of what an earlier run left there. The demo owns its report folder and remakes
+  /// its datasets every run, so a dataset or model of an earlier run (other samples, other settings) would refuse to
+  /// resume: each is made afresh in a folder from here.
+  std::filesystem::path freshFolder(const std::filesystem::path& relative) const;
   /// The figures of report.json, by step: report.json()["body"] = {...}.
   nlohmann::json& json() { return json_; }
 

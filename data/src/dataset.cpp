@@ -157,6 +157,7 @@ SplitCounts countSplits(const std::vector<std::uint8_t>& split) {
 void DatasetStats::add(const SampleStats& s) {
   DatasetStats one;  // the statistics of this sample alone
   one.accepted = 1;
+  one.acceptedAfterExtra = s.extraRounds > 0 ? 1 : 0;
   one.maxPenetration = s.maxPenetration;
   one.sumIterations = one.maxIterations = s.iterations;
   one.sumSeconds = s.seconds;
@@ -169,6 +170,7 @@ void DatasetStats::reject(Rejection rejection, int count) { rejected[rejectionNa
 
 void DatasetStats::merge(const DatasetStats& o) {
   accepted += o.accepted;
+  acceptedAfterExtra += o.acceptedAfterExtra;
   maxPenetration = std::max(maxPenetration, o.maxPenetration);
   sumIterations += o.sumIterations;
   maxIterations = std::max(maxIterations, o.maxIterations);
@@ -189,6 +191,7 @@ json DatasetStats::toJson() const {
   json rejectedJson = json::object();
   for (const auto& [reason, n] : rejected) rejectedJson[reason] = n;
   return json{{"accepted", accepted},
+              {"accepted_after_extra_rounds", acceptedAfterExtra},
               {"max_penetration_mm", maxPenetration * 1000.0},
               {"mean_iterations", any ? sumIterations / accepted : 0.0},
               {"max_iterations", maxIterations},
@@ -203,6 +206,7 @@ json DatasetStats::toJson() const {
 DatasetStats DatasetStats::fromJson(const json& j, const std::string& context) {
   DatasetStats s;
   s.accepted = core::requireValue<int>(j, "accepted", context);
+  s.acceptedAfterExtra = core::valueOr<int>(j, "accepted_after_extra_rounds", 0, context);  // absent before it
   s.maxPenetration = core::requireValue<double>(j, "max_penetration_mm", context) / 1000.0;
   s.sumIterations = core::requireValue<double>(j, "mean_iterations", context) * s.accepted;
   s.maxIterations = core::requireValue<int>(j, "max_iterations", context);
@@ -245,7 +249,7 @@ struct ChunkFile {
 };
 
 json statsToJson(const SampleStats& s) {
-  return json{{"iterations", s.iterations},          {"residual", s.residual},
+  return json{{"iterations", s.iterations},          {"extra_rounds", s.extraRounds}, {"residual", s.residual},
               {"max_penetration", s.maxPenetration}, {"min_area_ratio", s.minAreaRatio},
               {"max_area_ratio", s.maxAreaRatio},    {"seconds", s.seconds}};
 }
@@ -253,6 +257,7 @@ json statsToJson(const SampleStats& s) {
 SampleStats statsFromJson(const json& j, const std::string& context) {
   SampleStats s;
   s.iterations = core::requireValue<int>(j, "iterations", context);
+  s.extraRounds = core::valueOr<int>(j, "extra_rounds", 0, context);  // absent in datasets made before it
   s.residual = core::requireValue<double>(j, "residual", context);
   s.maxPenetration = core::requireValue<double>(j, "max_penetration", context);
   s.minAreaRatio = core::requireValue<double>(j, "min_area_ratio", context);

@@ -37,6 +37,9 @@ void SimulationOptions::validate() const {
                    "simulation: step must be in (0, 180] degrees, got " << stepDegrees);
   PIXELCLOTH_CHECK(iterationsPerStep >= 1 && finalIterations >= 1 && restIterations >= 1,
                    "simulation: iteration counts must be positive");
+  PIXELCLOTH_CHECK(extraIterations >= 0 && extraRound >= 1,
+                   "simulation: need extra iterations >= 0 and an extra round >= 1, got " << extraIterations << " and "
+                                                                                          << extraRound);
   PIXELCLOTH_CHECK(
       minAreaRatio > 0 && minAreaRatio < 1 && maxAreaRatio > 1,
       "simulation: need 0 < min area ratio < 1 < max area ratio, got " << minAreaRatio << " and " << maxAreaRatio);
@@ -183,10 +186,20 @@ data::Sample GarmentSimulator::simulate(const body::Pose& pose) {
     report = solver_->relax(x, step < steps ? options_.iterationsPerStep : options_.finalIterations);
     iterations += report.iterations;
   }
-  solver_->setContactRecheckEvery(options_.solver.contactRecheckEvery);
   data::Sample sample;
   sample.stats = measure(x);
+  // Not there yet: relax on from where it is (SimulationOptions::extraIterations).
+  int rounds = 0;
+  for (int extra = 0; extra < options_.extraIterations && sample.stats.rejection != data::Rejection::None &&
+                      sample.stats.rejection != data::Rejection::NotFinite;
+       extra += options_.extraRound, ++rounds) {
+    report = solver_->relax(x, std::min(options_.extraRound, options_.extraIterations - extra));
+    iterations += report.iterations;
+    sample.stats = measure(x);
+  }
+  solver_->setContactRecheckEvery(options_.solver.contactRecheckEvery);
   sample.stats.iterations = iterations;
+  sample.stats.extraRounds = rounds;
   sample.stats.residual = report.residual;
   sample.pose = pose.toVector();
   sample.pose = sample.pose.head(garment::poseSizeOf(garment_.name)).eval();

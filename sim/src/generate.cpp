@@ -65,6 +65,8 @@ nlohmann::json simulationSettings(const SimulationOptions& s) {
           {"iterations_per_step", s.iterationsPerStep},
           {"final_iterations", s.finalIterations},
           {"final_recheck_every", s.finalRecheckEvery},
+          {"extra_iterations", s.extraIterations},
+          {"extra_round", s.extraRound},
           {"min_area_ratio", s.minAreaRatio},
           {"max_area_ratio", s.maxAreaRatio},
           {"pinned_vertices", s.pinned.size()},

@@ -69,6 +69,7 @@ struct Fixture {
     // What a solver stores: the offsets of the (float) positions it wrote.
     s.offsets = pg::offsetsFromPositions(frames, s.positions.cast<double>()).cast<float>();
     s.stats.iterations = 10 + index;
+    s.stats.extraRounds = index % 3 == 0 ? 1 : 0;
     s.stats.maxPenetration = 0.0001 * index;
     s.stats.minAreaRatio = 0.9 - 0.001 * index;
     s.stats.maxAreaRatio = 1.1 + 0.001 * index;
@@ -192,6 +193,7 @@ TEST(DatasetWriter, WritesADatasetThatOpensAndChecks) {
   EXPECT_EQ(d.info.stats.rejected.at("triangle_grew"), 1);
   EXPECT_NEAR(d.info.stats.maxPenetration, 0.0011, 1e-12);
   EXPECT_EQ(d.info.stats.maxIterations, 21);
+  EXPECT_EQ(d.info.stats.acceptedAfterExtra, 4);  // samples 0, 3, 6 and 9
   const nlohmann::json manifest = d.info.manifest;
   EXPECT_EQ(manifest["format_version"], pd::kDatasetFormatVersion);
   EXPECT_NEAR(manifest["stats"]["max_penetration_mm"].get<double>(), 1.1, 1e-9);

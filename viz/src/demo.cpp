@@ -443,6 +443,7 @@ void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions&
         {"worst_bin_overall", bin(worstJointBin(drawn, kept))},
         {"drawn", drawn.size()},
         {"kept", kept.size()},
+        {"kept_after_extra_rounds", tally.acceptedAfterExtra},
         {"rejected", tally.rejected},
         {"rejection_rate", 1.0 - static_cast<double>(kept.size()) / drawn.size()},
         {"mean_seconds_per_simulation", survivors.empty() ? 0.0 : seconds / survivors.size()},
@@ -452,7 +453,9 @@ void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions&
     std::ostringstream text;
     text << std::fixed << std::setprecision(2);
     const nlohmann::json& poses = report.json()["pose_sampling"];
-    text << poses["kept"].get<int>() << " of " << poses["drawn"].get<int>() << " kept (rejection rate "
+    text << poses["kept"].get<int>() << " of " << poses["drawn"].get<int>() << " kept, "
+         << poses["kept_after_extra_rounds"].get<int>()
+         << " of them only after relaxing past the scheduled iterations at the target pose (rejection rate "
          << poses["rejection_rate"].get<double>() << "; rejected by reason " << poses["rejected"].dump() << "); "
          << poses["mean_seconds_per_simulation"].get<double>()
          << " s per simulation on one core; deepest kept vertex inside its body part "

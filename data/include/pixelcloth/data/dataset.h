@@ -85,7 +85,8 @@ SplitCounts countSplits(const std::vector<std::uint8_t>& split);
 /// Summary of the solver statistics of the accepted samples and of the rejections (manifest `stats`).
 struct DatasetStats {
   int accepted = 0;
-  double maxPenetration = 0;  ///< metres, max over samples
+  int acceptedAfterExtra = 0;  ///< of those, accepted only after extra rounds (SampleStats::extraRounds > 0)
+  double maxPenetration = 0;   ///< metres, max over samples
   double sumIterations = 0;
   int maxIterations = 0;
   double sumSeconds = 0;
@@ -97,7 +98,7 @@ struct DatasetStats {
   void reject(Rejection rejection, int count = 1);
   void merge(const DatasetStats& other);
   int rejectedTotal() const;
-  /// {"accepted", "max_penetration_mm", "mean_iterations", "max_iterations", "mean_seconds", "total_seconds",
+  /// {"accepted", "accepted_after_extra_rounds", "max_penetration_mm", "mean_iterations", "max_iterations", "mean_seconds", "total_seconds",
   ///  "min_area_ratio", "max_area_ratio", "rejected": {reason: count}, "rejected_total"}; ratios are null when no
   /// sample was accepted.
   nlohmann::json toJson() const;

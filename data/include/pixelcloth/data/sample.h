@@ -16,6 +16,7 @@ const char* rejectionName(Rejection rejection);
 /// What the quasistatic solver reports for one pose.
 struct SampleStats {
   int iterations = 0;         ///< solver iterations over all continuation steps
+  int extraRounds = 0;        ///< rounds relaxed past the scheduled iterations (sim::SimulationOptions::extraIterations)
   double residual = 0;        ///< largest vertex move in the last iteration (metres)
   double maxPenetration = 0;  ///< deepest cloth vertex inside its collision part (metres, >= 0)
   double minAreaRatio = 1;    ///< smallest triangle area over its pattern (rest) area

@@ -26,9 +26,9 @@ struct SimulationOptions {
   /// A pose whose drape fails the acceptance test after `finalIterations` is not yet given up: it relaxes on at the
   /// target pose in rounds of `extraRound` iterations, tested after each, up to `extraIterations` more. At 50
   /// iterations the shirt is still sliding up after the sleeves (docs/simulation.md, "Distance from equilibrium"),
-  /// and most failures are that unfinished slide stretching the armpit: of 288 sampled poses (seeds 11, 13, 17),
-  /// 231 pass at 50 iterations and 267 with up to 150 more, for 21% more time a pose. A kept sample is always a
-  /// later iterate of the same descent, never a restart; 0 turns this off.
+  /// and most failures are that unfinished slide stretching the armpit: of 864 sampled poses (nine seeds), 712 pass
+  /// at 50 iterations and 808 with up to 150 more, for 8% more time a pose. A kept sample is always a later iterate
+  /// of the same descent, never a restart; 0 turns this off.
   int extraIterations = 150;
   int extraRound = 50;
   /// At the target pose, contacts look again in the body part's tree this often (QuasistaticOptions::

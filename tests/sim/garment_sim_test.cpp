@@ -6,6 +6,7 @@
 
 #include "pixelcloth/cage/body_cage.h"
 #include "pixelcloth/cage/garment_cage.h"
+#include "support/test_util.h"
 
 namespace pixelcloth::sim {
 namespace {
@@ -59,6 +60,21 @@ TEST_F(TShirtSimulation, ARestSettleStoppedAtItsCapIsNotSettled) {
   const GarmentSimulator capped(*body_, *shirt_, *dressing_, options);
   EXPECT_EQ(capped.restStats().iterations, 2);
   EXPECT_FALSE(capped.restSettled());
+}
+
+TEST(SimulationOptions, ExtraRoundsAndRechecksOutOfRangeAreRefused) {
+  SimulationOptions negative;
+  negative.extraIterations = -1;
+  EXPECT_NE(testing::inputErrorOf([&] { negative.validate(); }).find("extra iterations >= 0"), std::string::npos);
+  SimulationOptions emptyRound;
+  emptyRound.extraRound = 0;
+  EXPECT_NE(testing::inputErrorOf([&] { emptyRound.validate(); }).find("extra round >= 1"), std::string::npos);
+  SimulationOptions noRecheck;
+  noRecheck.finalRecheckEvery = 0;
+  EXPECT_NE(testing::inputErrorOf([&] { noRecheck.validate(); }).find("final recheck interval"), std::string::npos);
+  SimulationOptions off;
+  off.extraIterations = 0;  // turns the extra rounds off: valid
+  EXPECT_NO_THROW(off.validate());
 }
 
 TEST_F(TShirtSimulation, LoweredArmsCarryTheirSleevesAndASampleDependsOnlyOnItsPose) {

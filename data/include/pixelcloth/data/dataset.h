@@ -98,9 +98,9 @@ struct DatasetStats {
   void reject(Rejection rejection, int count = 1);
   void merge(const DatasetStats& other);
   int rejectedTotal() const;
-  /// {"accepted", "accepted_after_extra_rounds", "max_penetration_mm", "mean_iterations", "max_iterations", "mean_seconds", "total_seconds",
-  ///  "min_area_ratio", "max_area_ratio", "rejected": {reason: count}, "rejected_total"}; ratios are null when no
-  /// sample was accepted.
+  /// {"accepted", "accepted_after_extra_rounds", "max_penetration_mm", "mean_iterations", "max_iterations",
+  ///  "mean_seconds", "total_seconds", "min_area_ratio", "max_area_ratio", "rejected": {reason: count},
+  ///  "rejected_total"}; ratios are null when no sample was accepted.
   nlohmann::json toJson() const;
   static DatasetStats fromJson(const nlohmann::json& json, const std::string& context);
 };

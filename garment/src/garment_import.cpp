@@ -11,6 +11,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "garment_checks.h"
+#include "garment_traits.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/mesh_io.h"
@@ -60,16 +62,19 @@ struct Polyline {
   bool closed = false;
 };
 
+/// Builds and checks a garment from a mesh and a JSON object in garment.json's schema. `objFile` and `jsonFile` name
+/// where they came from in messages (the same name for a garment built in memory).
 class Importer {
  public:
-  Importer(const fs::path& obj, const fs::path& cageJson) : objPath_(obj), jsonPath_(cageJson) {
-    objFile_ = obj.string();
-    jsonFile_ = cageJson.string();
+  Importer(core::Mesh mesh, json root, std::string objFile, std::string jsonFile)
+      : root_(std::move(root)), objFile_(std::move(objFile)), jsonFile_(std::move(jsonFile)) {
+    garment_.mesh = std::move(mesh);
   }
 
   Garment run() {
-    readObj();
+    checkMesh();
     readJsonHeader();
+    garment_.traits = traitsOfGarmentJson(root_, garment_.mesh, jsonFile_);
     readLayouts();
     readPanels();
     buildVertexUV();
@@ -87,13 +92,7 @@ class Importer {
   // ---------------------------------------------------------------------------------------------------------------
   // Files
 
-  void readObj() {
-    std::error_code ec;
-    PIXELCLOTH_CHECK(fs::exists(objPath_, ec), objFile_
-                                                   << ": no such file; expected an OBJ mesh with per-corner texture "
-                                                      "coordinates (vt) in pattern space");
-    PIXELCLOTH_CHECK(fs::is_regular_file(objPath_, ec), objFile_ << ": not a regular file; expected an OBJ mesh");
-    garment_.mesh = core::readMesh(objPath_);
+  void checkMesh() {
     const core::Mesh& mesh = garment_.mesh;
     PIXELCLOTH_CHECK(mesh.hasUV(), objFile_ << ": no texture coordinates: the " << mesh.numFaces()
                                             << " faces carry no vt indices; expected every face as 'f v/vt ...' "
@@ -108,7 +107,6 @@ class Importer {
   }
 
   void readJsonHeader() {
-    root_ = core::readJson(jsonPath_);
     PIXELCLOTH_CHECK(root_.is_object(), jsonFile_ << ": expected a JSON object, found " << root_.type_name());
     if (root_.contains("format")) {
       const std::string format = core::requireValue<std::string>(root_, "format", jsonFile_);
@@ -522,9 +520,8 @@ class Importer {
     }
   }
 
-  fs::path objPath_, jsonPath_;
-  std::string objFile_, jsonFile_;
   json root_;
+  std::string objFile_, jsonFile_;
   Garment garment_;
   std::unordered_map<std::uint64_t, EdgeFaces> edges_;
   std::vector<Polyline> curves_;  // seams, then openings, then cage lines
@@ -532,8 +529,21 @@ class Importer {
 
 }  // namespace
 
-Garment importGarment(const fs::path& obj, const fs::path& cageJson) { return Importer(obj, cageJson).run(); }
+Garment importGarment(const fs::path& obj, const fs::path& cageJson) {
+  const std::string objFile = obj.string();
+  std::error_code ec;
+  PIXELCLOTH_CHECK(fs::exists(obj, ec), objFile << ": no such file; expected an OBJ mesh with per-corner texture "
+                                                   "coordinates (vt) in pattern space");
+  PIXELCLOTH_CHECK(fs::is_regular_file(obj, ec), objFile << ": not a regular file; expected an OBJ mesh");
+  core::Mesh mesh = core::readMesh(obj);
+  return Importer(std::move(mesh), core::readJson(cageJson), objFile, cageJson.string()).run();
+}
 
-Garment loadGarment(const fs::path& folder) { return importGarment(folder / "garment.obj", folder / "garment.json"); }
+void validateGarment(const Garment& garment, const std::string& context) {
+  const json root = garmentJson(garment);
+  const Garment checked = Importer(garment.mesh, root, context, context).run();
+  PIXELCLOTH_ASSERT(checked.vertexUV == garment.vertexUV,
+                    context << ": the garment's vertexUV differs from what its faces' UVs and layouts give");
+}
 
 }  // namespace pixelcloth::garment

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "garment_pattern.h"
+#include "garment_traits.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/garment/garment.h"
 
@@ -41,6 +42,15 @@ void NecktieOptions::validate() const {
                    "necktie options: the tip must not be sharper than 60 degrees: bladeWidth / 2 = "
                        << 0.5 * bladeWidth
                        << " must be >= tipHeight * tan(30 deg) = " << tipHeight * std::tan(M_PI / 6));
+}
+
+std::vector<int> necktieKnotVertices(const core::Mesh& mesh) {
+  std::vector<int> knot;
+  if (mesh.numVertices() == 0) return knot;
+  const double top = mesh.V.col(1).maxCoeff();
+  for (int v = 0; v < mesh.numVertices(); ++v)
+    if (mesh.V(v, 1) > top - 0.04) knot.push_back(v);
+  return knot;
 }
 
 Garment makeNecktie(const NecktieOptions& options) {
@@ -99,8 +109,11 @@ Garment makeNecktie(const NecktieOptions& options) {
   garment.openings.push_back(Opening{"outline", loops[0]});
   for (size_t b = 0; b < bandLines.size(); ++b)
     garment.lines.push_back(CageLine{bandLines[b].name, "split", merged.chains[0][5 + b], false});
+  garment.traits = templateTraits("necktie");
+  garment.traits.pinned = necktieKnotVertices(garment.mesh);
   garment.meshing = merged.stats;
   garment.meshing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  garment.recipe = recipeOf(options);
   return garment;
 }
 

@@ -2,11 +2,16 @@
 // laid out as two T-shaped layouts, meshed and stitched (DESIGN.md, "Garment templates").
 #include <algorithm>
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "garment_pattern.h"
+#include "garment_traits.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/garment/garment.h"
 
@@ -67,6 +72,46 @@ double polygonArea(const std::vector<Eigen::Vector2d>& p) {
 }
 
 }  // namespace
+
+TShirtOptions TShirtOptions::graded(double factor) const {
+  PIXELCLOTH_CHECK(std::isfinite(factor) && factor >= 0.6 && factor <= 1.6,
+                   "T-shirt options: grade " << factor << ", expected 0.6 to 1.6 (1: the default size M)");
+  TShirtOptions g = *this;
+  for (double* length : {&g.length, &g.halfWidth, &g.shoulderHalfWidth, &g.shoulderDrop, &g.armpitDepth,
+                         &g.sleeveLength, &g.sleeveHemHeight, &g.neckHalfWidth, &g.frontNeckDepth, &g.backNeckDepth,
+                         &g.torsoDepth, &g.chestHeight, &g.waistHeight, &g.sidePanelX, &g.sleeveDepth})
+    *length *= factor;
+  // The chest loop keeps its fixed centimetre below the armpit (validate), which a smaller grade would eat into.
+  g.chestHeight = std::min(g.chestHeight, g.length - g.armpitDepth - 0.01);
+  return g;
+}
+
+namespace {
+const std::vector<std::pair<std::string, double>>& sizeGrades() {
+  static const std::vector<std::pair<std::string, double>> grades = {
+      {"XS", 0.88}, {"S", 0.94}, {"M", 1.0}, {"L", 1.06}, {"XL", 1.12}, {"XXL", 1.18}};
+  return grades;
+}
+}  // namespace
+
+double sizeGrade(const std::string& size) {
+  std::string upper = size;
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  std::string names;
+  for (const auto& [name, grade] : sizeGrades()) {
+    if (name == upper) return grade;
+    names += (names.empty() ? "" : ", ") + name;
+  }
+  PIXELCLOTH_FAIL("--size '" << size << "': unknown size; expected one of " << names << " (or --grade F)");
+}
+
+std::string nearestSize(double grade) {
+  std::string best;
+  double distance = std::numeric_limits<double>::infinity();
+  for (const auto& [name, g] : sizeGrades())
+    if (std::abs(g - grade) < distance) distance = std::abs(g - grade), best = name;
+  return best;
+}
 
 void TShirtOptions::validate() const {
   PIXELCLOTH_CHECK(targetVertices >= 100 && targetVertices <= 200000,
@@ -324,6 +369,7 @@ Garment makeTShirt(const TShirtOptions& options) {
 
   garment.meshing = merged.stats;
   garment.meshing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  garment.recipe = recipeOf(options);
   return garment;
 }
 

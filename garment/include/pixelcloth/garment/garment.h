@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -58,10 +59,43 @@ struct PatternMeshingStats {
   std::string summary(int numVertices) const;
 };
 
+/// What the later stages need to know about a garment besides its mesh and cage, carried by the garment (and its
+/// garment.json, field "traits") so that no stage looks a garment up by name. Defaults: a garment worn on the torso and
+/// arms, the paper's T-shirt settings.
+struct GarmentTraits {
+  /// Joints of the pose vector that drive the garment: the first `poseJoints` of body::kPoseJoints, 9 floats each
+  /// (DESIGN.md, "Pose vector"). 10 (90 floats) for garments on the arms; 4 (the centre line, 36 floats) for the
+  /// necktie, which hangs from the neck (paper section 6). Sampled poses keep the other joints at rest, and arm poses
+  /// are pruned against the torso only when an arm joint drives the garment.
+  int poseJoints = 10;
+  /// Vertices held at their skinned rest position by the simulation (the necktie's knot end), rows of `mesh.V`.
+  std::vector<int> pinned;
+  /// Whole-garment cloth image per layout, pixels (paper appendix: 256 x 256 for the T-shirt, 64 x 256 for the tie).
+  int imageWidth = 256;
+  int imageHeight = 256;
+  /// Learn offsets in the root frame rather than in the embedded local frames by default (the paper's necktie).
+  bool rootFrameOffsets = false;
+  double normalLossWeight = 0.01;  ///< the paper's normal-loss weight for this garment (0.1 for the necktie)
+  double edgeLossWeight = 0.0;     ///< the paper's edge-length loss weight (0.1 for the necktie, 0 for the T-shirt)
+
+  /// Floats of the pose vector the garment's data holds: 9 * poseJoints.
+  int poseSize() const { return 9 * poseJoints; }
+  /// true when an arm joint (l_shoulder onwards) drives the garment.
+  bool armsDrive() const { return poseJoints > 4; }
+  /// Throws `InputError` prefixed with `context` naming the field out of range (pinned vertices must be < numVertices).
+  void validate(int numVertices, const std::string& context) const;
+  /// {"pose_joints": [names], "pinned": [...], "image_size": [w, h], "offset_frame": "local" | "root",
+  ///  "normal_loss_weight", "edge_loss_weight"}.
+  nlohmann::json toJson() const;
+  /// Reads what toJson writes; absent fields keep their defaults. "pose_joints" must name a prefix of
+  /// body::kPoseJoints. Validates against `numVertices`; `context` (a file name) prefixes messages.
+  static GarmentTraits fromJson(const nlohmann::json& json, int numVertices, const std::string& context);
+};
+
 /// A garment template: one triangle mesh sewn from flat pattern pieces, each vertex a cloth pixel with fixed
 /// coordinates in pattern space (per layout). Pattern space: metres, u to the right and v up as the layout is drawn.
 struct Garment {
-  std::string name;  ///< "tshirt" | "necktie"
+  std::string name;  ///< "tshirt", "necktie" (the templates) or the name an imported garment was given; for people
   /// V: #V x 3 rest placement around the T-posed mannequin, metres (Y up, body faces +Z), faces oriented outwards;
   /// F: #F x 3; UV / FUV: per-corner pattern coordinates in metres, each layout's triangles counter-clockwise.
   core::Mesh mesh;
@@ -76,6 +110,10 @@ struct Garment {
   std::vector<Opening> openings;
   std::vector<CageLine> lines;  ///< cage lines other than seams and openings (see CageLine)
   PatternMeshingStats meshing;
+  GarmentTraits traits;
+  /// How a template was built, {"name": "tshirt", "options": {every TShirtOptions field}} (or the necktie's), so that
+  /// loading its folder rebuilds the exact mesh rather than the OBJ's rounded numbers; null for an imported garment.
+  nlohmann::json recipe;
 
   int numLayouts() const { return static_cast<int>(layouts.size()); }
   /// Index of a layout by name; throws `InputError` naming the known layouts if there is none.
@@ -126,7 +164,20 @@ struct TShirtOptions {
   double boundarySpacing = 0.7;
   /// Throws `InputError` naming the field when an option is out of range or the pattern pieces would not fit.
   void validate() const;
+  /// The same shirt graded by `factor`: every length of the pattern (widths, lengths, depths, the neck, the sleeves,
+  /// the loop and split heights) times `factor`, the placement height (neckSideHeight), the mesh size and the
+  /// fractions kept. Proportional grading, as a pattern is graded between sizes. Throws `InputError` unless `factor`
+  /// is in [0.6, 1.6].
+  TShirtOptions graded(double factor) const;
 };
+
+/// The grading factor of a named size, M being the default template (1.0): XS 0.88, S 0.94, M 1, L 1.06, XL 1.12,
+/// XXL 1.18 (about one chest size, 6 cm of girth on the 1.75 m mannequin, per step). Case-insensitive; throws
+/// `InputError` naming the sizes for any other name.
+double sizeGrade(const std::string& size);
+
+/// The size whose grade is nearest `grade` ("XS" ... "XXL"), for advice such as "try --size L".
+std::string nearestSize(double grade);
 
 /// Builds the T-shirt template: front and back layouts (each the body piece with the two sleeve halves, joined along
 /// the armholes), triangulated in pattern space by CGAL's constrained Delaunay mesher (min angle >= 20.7 degrees),
@@ -210,8 +261,24 @@ const std::vector<std::string>& templateNames();
 /// "<context>: unknown garment template 'skirt'; expected one of: tshirt, necktie" for any other name.
 Garment makeGarment(const std::string& name, const std::string& context = "garment");
 
-/// Floats of the pose vector a garment's data holds: body::kNecktiePoseSize (the centre-line joints) for the necktie,
-/// body::kPoseSize for every other garment.
-int poseSizeOf(const std::string& garmentName);
+/// How a template is built on request (the `garment` verb's --vertices, --size, --grade).
+struct TemplateRequest {
+  int vertices = 0;    ///< target vertex count; 0: the template's default (T-shirt 3000, necktie 500)
+  double grade = 1.0;  ///< TShirtOptions::graded factor (sizeGrade for a named size); the necktie has one size
+};
+
+/// The built-in template called `name` built as `request` asks. Throws `InputError` for an unknown name, options out of
+/// range, or a grade other than 1 for a template without sizes.
+Garment makeGarment(const std::string& name, const TemplateRequest& request, const std::string& context = "garment");
+
+/// The traits of a built-in template (what makeGarment(name).traits holds), without building its mesh; for garment
+/// folders written before garment.json carried its traits. Throws like makeGarment for an unknown name.
+GarmentTraits templateTraits(const std::string& name, const std::string& context = "garment");
+
+/// What every verb's --garment takes: a template name (tshirt, necktie) or a garment folder (garment.obj +
+/// garment.json, as `pixelcloth garment` writes it, template or imported). A path that exists is read as a folder;
+/// anything else must be a template name. Throws `InputError` "<context>: 'X' is neither a garment template (tshirt,
+/// necktie) nor a garment folder (...)" naming what was expected.
+Garment resolveGarment(const std::string& nameOrFolder, const std::string& context = "--garment");
 
 }  // namespace pixelcloth::garment

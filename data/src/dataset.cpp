@@ -52,11 +52,10 @@ DatasetShard parseShard(const std::string& text) {
 }
 
 void DatasetSettings::validate() const {
-  PIXELCLOTH_CHECK(garment == "tshirt" || garment == "necktie",
-                   "dataset settings: garment '" << garment << "', expected tshirt or necktie");
-  const int expectedPose = garment::poseSizeOf(garment);
-  PIXELCLOTH_CHECK(poseSize == expectedPose, "dataset settings: pose_size " << poseSize << " for the " << garment
-                                                                            << ", expected " << expectedPose);
+  PIXELCLOTH_CHECK(!garment.empty(), "dataset settings: garment is empty, expected the garment's name");
+  PIXELCLOTH_CHECK(poseSize >= 9 && poseSize <= body::kPoseSize && poseSize % 9 == 0,
+                   "dataset settings: pose_size " << poseSize << ", expected 9 floats (a 3x3 rotation) for each of 1 to "
+                                                  << body::kPoseSize / 9 << " joints");
   PIXELCLOTH_CHECK(vertexCount > 0, "dataset settings: vertex_count " << vertexCount << ", expected > 0");
   PIXELCLOTH_CHECK(count >= 1, "dataset settings: count " << count << ", expected >= 1");
   shard.validate();

@@ -173,7 +173,7 @@ DatasetSettings importDataset(const std::vector<fs::path>& objs, const fs::path&
   PIXELCLOTH_CHECK(!objs.empty(), "dataset import: no OBJ files");
   DatasetSettings settings;
   settings.garment = garment.name;
-  settings.poseSize = garment::poseSizeOf(garment.name);
+  settings.poseSize = garment.traits.poseSize();
   settings.vertexCount = garment.mesh.numVertices();
   settings.seed = options.seed;
   settings.count = static_cast<int>(objs.size());

@@ -197,16 +197,21 @@ Eigen::MatrixX3d loadDatasetRestPositions(const fs::path& folder, int vertexCoun
 }
 
 garment::Garment datasetGarment(const DatasetInfo& info) {
-  garment::Garment garment =
-      garment::makeGarment(info.settings.garment, info.folder.string() + ": manifest.json: garment");
-  const fs::path stored = info.folder / "garment" / "garment.obj";
-  verifyDatasetFile(info, "garment/garment.obj");
-  const core::Mesh mesh = core::readMesh(stored);
-  PIXELCLOTH_CHECK(mesh.numVertices() == garment.mesh.numVertices() && mesh.F == garment.mesh.F,
-                   stored.string() << ": " << mesh.numVertices() << " vertices, " << mesh.numFaces()
-                                   << " faces; the built-in " << garment.name << " template has "
-                                   << garment.mesh.numVertices() << " and " << garment.mesh.numFaces()
-                                   << " (or other faces): the dataset was made with another garment");
+  verifyFilesStartingWith(info.folder, "garment/");
+  const fs::path folder = info.folder / "garment";
+  std::error_code ec;
+  PIXELCLOTH_CHECK(fs::is_regular_file(folder / "garment.obj", ec) && fs::is_regular_file(folder / "garment.json", ec),
+                   folder.string() << ": missing garment.obj or garment.json; a dataset carries the garment it was "
+                                      "made with (docs/dataset.md)");
+  garment::Garment garment = garment::loadGarment(folder);
+  PIXELCLOTH_CHECK(garment.mesh.numVertices() == info.settings.vertexCount,
+                   folder.string() << ": the garment has " << garment.mesh.numVertices() << " vertices, "
+                                   << (info.folder / kManifest).string() << " says vertex_count "
+                                   << info.settings.vertexCount);
+  PIXELCLOTH_CHECK(garment.traits.poseSize() == info.settings.poseSize,
+                   folder.string() << ": the garment is driven by " << garment.traits.poseJoints << " joints ("
+                                   << garment.traits.poseSize() << " pose floats), " << (info.folder / kManifest).string()
+                                   << " says pose_size " << info.settings.poseSize);
   return garment;
 }
 

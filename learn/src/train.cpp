@@ -24,6 +24,8 @@
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/progress.h"
+#include "pixelcloth/data/dataset.h"
+#include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/patch.h"
 #include "target.h"
 #include "tensor.h"
@@ -339,16 +341,23 @@ TrainReport train(const fs::path& datasetFolder, const fs::path& out, const Trai
   const auto start = Clock::now();
   if (options.threads > 0) torch::set_num_threads(options.threads);
   const data::DatasetInfo info = data::readDatasetInfo(datasetFolder);
-  const bool necktie = info.settings.garment == "necktie";
-  PIXELCLOTH_CHECK((options.model.architecture == Architecture::Necktie) == necktie ||
-                       options.model.architecture == Architecture::FullyConnected ||
-                       options.model.architecture == Architecture::FullyConnectedPca,
-                   "train: the " << architectureName(options.model.architecture) << " model does not fit "
-                                 << datasetFolder.string() << ", which holds the " << info.settings.garment
-                                 << (necktie ? " (use --model necktie, fc or fc-pca)" : " (use whole, patch, fc or fc-pca)"));
-  const OffsetSpace space = options.space.value_or(necktie ? OffsetSpace::Root : OffsetSpace::Local);
-  const double normalWeight = options.normalWeight >= 0 ? options.normalWeight : (necktie ? 0.1 : 0.01);
-  const double edgeWeight = options.edgeWeight >= 0 ? options.edgeWeight : (necktie ? 0.1 : 0.0);
+  const garment::Garment garment = data::datasetGarment(info);
+  const garment::GarmentTraits& traits = garment.traits;
+  if (options.model.architecture == Architecture::Whole || options.model.architecture == Architecture::Necktie) {
+    // A whole-garment decoder draws the garment's cloth image: every layout's three channels at its image size.
+    const std::vector<std::int64_t> shape = options.model.outputShape();
+    const std::vector<std::int64_t> image = {3 * garment.numLayouts(), traits.imageHeight, traits.imageWidth};
+    PIXELCLOTH_CHECK(shape == image,
+                     "train: the " << architectureName(options.model.architecture) << " model does not fit "
+                                   << datasetFolder.string() << ": it draws " << shape[0] << " x " << shape[1] << " x "
+                                   << shape[2] << " cloth images, the dataset's garment (" << garment.name << ", "
+                                   << garment.numLayouts() << " layouts) needs " << image[0] << " x " << image[1]
+                                   << " x " << image[2] << " (--model whole draws two layouts at 256 x 256, --model "
+                                   << "necktie one at 256 x 64; patch, fc and fc-pca fit any garment)");
+  }
+  const OffsetSpace space = options.space.value_or(traits.rootFrameOffsets ? OffsetSpace::Root : OffsetSpace::Local);
+  const double normalWeight = options.normalWeight >= 0 ? options.normalWeight : traits.normalLossWeight;
+  const double edgeWeight = options.edgeWeight >= 0 ? options.edgeWeight : traits.edgeLossWeight;
   const TrainingData data = loadTrainingData(datasetFolder, space, options.residual);
   PIXELCLOTH_CHECK(!data.train.empty(), "train: " << datasetFolder.string() << " has no training samples");
 

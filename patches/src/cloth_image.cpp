@@ -138,9 +138,8 @@ void ClothImageOptions::validate() const {
 
 ClothImager::ClothImager(const garment::Garment& garment, const ClothImageOptions& options) {
   options.validate();
-  const bool necktie = garment.name == "necktie";
-  width_ = options.width > 0 ? options.width : necktie ? 64 : 256;
-  height_ = options.height > 0 ? options.height : 256;
+  width_ = options.width > 0 ? options.width : garment.traits.imageWidth;
+  height_ = options.height > 0 ? options.height : garment.traits.imageHeight;
   numVertices_ = garment.mesh.numVertices();
   garmentName_ = garment.name;
   layouts_ = garment.layouts;

@@ -47,15 +47,6 @@ void SimulationOptions::validate() const {
   PIXELCLOTH_CHECK(maxPenetration > 0, "simulation: max penetration must be positive, got " << maxPenetration);
 }
 
-std::vector<int> defaultPins(const garment::Garment& garment) {
-  std::vector<int> pins;
-  if (garment.name != "necktie") return pins;
-  const double top = garment.mesh.V.col(1).maxCoeff();
-  for (int v = 0; v < garment.mesh.numVertices(); ++v)
-    if (garment.mesh.V(v, 1) > top - 0.04) pins.push_back(v);
-  return pins;
-}
-
 GarmentSimulator::GarmentSimulator(const body::Body& body, const garment::Garment& garment,
                                    const cage::Dressing& dressing, const SimulationOptions& options,
                                    const Eigen::MatrixX3d* settled)
@@ -202,7 +193,7 @@ data::Sample GarmentSimulator::simulate(const body::Pose& pose) {
   sample.stats.extraRounds = rounds;
   sample.stats.residual = report.residual;
   sample.pose = pose.toVector();
-  sample.pose = sample.pose.head(garment::poseSizeOf(garment_.name)).eval();
+  sample.pose = sample.pose.head(garment_.traits.poseSize()).eval();
   sample.positions = x.cast<float>();
   if (sample.stats.rejection != data::Rejection::NotFinite) {
     const garment::EmbeddedFrames frames = garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding);

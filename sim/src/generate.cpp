@@ -108,8 +108,7 @@ int threadCount(int requested, int jobs) {
 }  // namespace
 
 void GenerateOptions::validate() const {
-  PIXELCLOTH_CHECK(garment == "tshirt" || garment == "necktie",
-                   "generate: unknown garment '" << garment << "' (expected tshirt or necktie)");
+  PIXELCLOTH_CHECK(!garment.empty(), "generate: --garment is empty; expected a template name or a garment folder");
   PIXELCLOTH_CHECK(count >= 1, "generate: --count must be at least 1, got " << count);
   PIXELCLOTH_CHECK(threads >= 0, "generate: --threads must be >= 0, got " << threads);
   PIXELCLOTH_CHECK(maxAttempts >= 1, "generate: max attempts must be >= 1");
@@ -119,16 +118,15 @@ void GenerateOptions::validate() const {
   simulation.validate();
 }
 
-body::Pose samplePose(const body::Body& body, const std::string& garment, std::uint64_t seed, int index, int attempt,
-                      int* pruned) {
+body::Pose samplePose(const body::Body& body, const garment::GarmentTraits& traits, std::uint64_t seed, int index,
+                      int attempt, int* pruned) {
   PoseSamplerOptions options;
   options.seed = mix(mix(seed) ^ mix(static_cast<std::uint64_t>(index) * 1000003ULL + attempt));
-  options.prune = garment != "necktie";  // the necktie keeps only the centre line: arm pruning would not matter
+  options.prune = traits.armsDrive();  // a garment the arms do not move: arm pruning would not matter
   PoseSampler sampler(body, options);
   body::Pose pose = sampler.next();
   if (pruned) *pruned = sampler.stats().rejectedArmInsideTorso;
-  if (garment == "necktie")  // the necktie's pose vector is the centre line only
-    for (size_t j = 4; j < pose.rotations.size(); ++j) pose.rotations[j].setIdentity();
+  for (size_t j = traits.poseJoints; j < pose.rotations.size(); ++j) pose.rotations[j].setIdentity();
   return pose;
 }
 
@@ -136,14 +134,14 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
   GenerateOptions options = given;
   options.validate();
   const auto start = std::chrono::steady_clock::now();
+  const garment::Garment garment = garment::resolveGarment(options.garment, "generate: --garment");
   nlohmann::json bodyDescription;
   const body::Body body = makeBody(options, bodyDescription);
-  const garment::Garment garment = garment::makeGarment(options.garment, "generate: --garment");
-  if (options.simulation.pinned.empty()) options.simulation.pinned = defaultPins(garment);
+  if (options.simulation.pinned.empty()) options.simulation.pinned = garment.traits.pinned;
 
   data::DatasetSettings settings;
-  settings.garment = options.garment;
-  settings.poseSize = garment::poseSizeOf(options.garment);
+  settings.garment = garment.name;
+  settings.poseSize = garment.traits.poseSize();
   settings.vertexCount = garment.mesh.numVertices();
   settings.seed = options.seed;
   settings.count = options.count;
@@ -152,8 +150,10 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
   settings.generator = simulationSettings(options.simulation);
   settings.source = "simulated";
 
-  PIXELCLOTH_INFO("generate: dressing the " << options.garment << " on the body");
+  PIXELCLOTH_INFO("generate: dressing the " << garment.name << " on the body");
   const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), garment, cage::garmentCage(garment));
+  const std::string advice = cage::fitAdvice(dressing);
+  if (!advice.empty()) PIXELCLOTH_WARN("generate: " << advice);
   data::DatasetWriter writer(out, settings, body, garment, dressing.relaxed, dressing.embedding);
   const std::vector<int> pending = writer.pending();
   GenerateReport report;
@@ -167,14 +167,15 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
       PIXELCLOTH_WARN("generate: the rest drape did not settle: the solver stopped at its cap of "
                       << options.simulation.restIterations << " iterations with vertices still moving "
                       << 1000 * rest.residual << " mm an iteration (" << rest.seconds
-                      << " s); the samples start from this drape");
+                      << " s); the samples start from this drape"
+                      << (advice.empty() ? "" : " (the garment does not fit the body: see above)"));
     else
       PIXELCLOTH_INFO("generate: rest drape settled in " << rest.iterations << " iterations (" << rest.seconds
                                                          << " s)");
     PIXELCLOTH_INFO("generate: " << pending.size() << " samples on " << threads << " threads");
     std::unique_ptr<core::Progress> progress;
     if (!options.quiet)
-      progress = std::make_unique<core::Progress>("generate " + options.garment, static_cast<int>(pending.size()));
+      progress = std::make_unique<core::Progress>("generate " + garment.name, static_cast<int>(pending.size()));
     std::atomic<int> rejected{0};
     std::mutex progressMutex;
     forEachOnSimulators(
@@ -184,7 +185,7 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
           bool done = false;
           for (int attempt = 0; attempt < options.maxAttempts && !done; ++attempt) {
             int pruned = 0;
-            const body::Pose pose = samplePose(body, options.garment, options.seed, index, attempt, &pruned);
+            const body::Pose pose = samplePose(body, garment.traits, options.seed, index, attempt, &pruned);
             for (int p = 0; p < pruned; ++p) writer.countRejection(data::Rejection::ArmInsideTorso);
             const data::Sample sample = simulator.simulate(pose);
             if (sample.stats.rejection != data::Rejection::None) {

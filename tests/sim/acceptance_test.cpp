@@ -16,7 +16,7 @@ TEST(SampledTShirtPoses, MostPassThePapersAreaTestRaisedArmsIncluded) {
   const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), shirt, cage::garmentCage(shirt));
   constexpr int kPoses = 96;
   std::vector<body::Pose> poses;
-  for (int i = 0; i < kPoses; ++i) poses.push_back(samplePose(body, "tshirt", 7, i, 0));
+  for (int i = 0; i < kPoses; ++i) poses.push_back(samplePose(body, garment::GarmentTraits{}, 7, i, 0));
   const std::vector<data::SampleStats> stats = simulatePoses(body, shirt, dressing, poses, {}, 0, true);
 
   int kept = 0, raised = 0, raisedKept = 0;

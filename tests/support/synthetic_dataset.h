@@ -29,7 +29,7 @@ inline std::filesystem::path syntheticDataset(const std::string& tag, const std:
   fs::remove_all(dir);
   const pb::Body& body = coarseMannequin();
   const pg::Garment garment = pg::makeGarment(name, "test");
-  const int poseSize = pg::poseSizeOf(name);
+  const int poseSize = garment.traits.poseSize();
   const Eigen::MatrixX3d rest = garment.mesh.V;
   Eigen::MatrixX3d u = Eigen::MatrixX3d::Zero(rest.rows(), 3);
   u.col(0).setOnes();

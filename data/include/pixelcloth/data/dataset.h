@@ -39,8 +39,8 @@ DatasetShard parseShard(const std::string& text);
 /// What a dataset folder holds and how it was made: everything that must agree when a partial folder is resumed or
 /// shards are merged (the shard itself excepted for merging).
 struct DatasetSettings {
-  std::string garment = "tshirt";  ///< "tshirt" | "necktie"
-  int poseSize = 90;               ///< 90 (T-shirt) or 36 (necktie: the four centre-line joints)
+  std::string garment = "tshirt";  ///< the garment's name, for people; the garment itself is the folder's garment/
+  int poseSize = 90;               ///< 9 per driving joint: 90 (T-shirt), 36 (necktie: the four centre-line joints)
   int vertexCount = 0;             ///< cloth pixels of the garment
   std::uint64_t seed = 0;          ///< generator seed; also seeds the train / regularisation / test split
   int count = 0;                   ///< N: samples in the whole dataset (all shards)
@@ -215,8 +215,9 @@ body::Body loadDatasetBody(const std::filesystem::path& folder);
 garment::Embedding loadDatasetEmbedding(const std::filesystem::path& folder, int numBodyFaces);
 Eigen::MatrixX3d loadDatasetRestPositions(const std::filesystem::path& folder, int vertexCount);
 
-/// The garment template the dataset was made with, rebuilt by name (default template options) and checked against
-/// garment/garment.obj (same vertex count, same faces); throws `InputError` when they differ.
+/// The garment the dataset was made with, read from its garment/ folder (garment::loadGarment; checksums verified
+/// first): a template or an imported garment alike. Throws `InputError` when the folder is missing or damaged, or when
+/// its vertex count or pose size disagrees with the manifest.
 garment::Garment datasetGarment(const DatasetInfo& info);
 
 /// Options of checkDataset.

@@ -25,11 +25,13 @@ struct TrainOptions {
   /// with different subsets (a job array) fill one model folder.
   std::vector<int> patches;
   std::string loss = "l1";  ///< "l1" (the paper's) or "l2", masked to the padded UV mask
-  /// What the values mean; the default (unset) is the paper's: root for the necktie, local otherwise.
+  /// What the values mean; the default (unset) is the garment's (garment::GarmentTraits::rootFrameOffsets): the
+  /// paper's root frame for the necktie, local frames otherwise.
   std::optional<OffsetSpace> space;
-  /// Weight of the normal loss (1 - cosine of per-vertex normals); negative: the paper's (0.01 T-shirt, 0.1 necktie).
+  /// Weight of the normal loss (1 - cosine of per-vertex normals); negative: the garment's (GarmentTraits; the paper's
+  /// 0.01 for the T-shirt, 0.1 for the necktie).
   double normalWeight = -1;
-  /// Weight of the edge-length L1 loss; negative: the paper's (0.1 necktie, 0 otherwise).
+  /// Weight of the edge-length L1 loss; negative: the garment's (the paper's 0.1 for the necktie, 0 otherwise).
   double edgeWeight = -1;
   /// Residual mode: a base folder of the dataset (`reconstruct --write-base`); the inputs gain the marker features
   /// and the targets become ground truth minus base. Empty: plain mode (pose in, values out).

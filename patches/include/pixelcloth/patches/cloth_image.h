@@ -56,8 +56,8 @@ ImageFrame clothImageFrame(const garment::Garment& garment, int layout, int widt
 
 /// Options of whole-garment cloth images.
 struct ClothImageOptions {
-  int width = 0;                  ///< pixels; 0: the garment's default (T-shirt 256, necktie 64)
-  int height = 0;                 ///< pixels; 0: the garment's default (256 for both)
+  int width = 0;                  ///< pixels; 0: the garment's (GarmentTraits::imageWidth: T-shirt 256, necktie 64)
+  int height = 0;                 ///< pixels; 0: the garment's (GarmentTraits::imageHeight: 256 for both)
   int padding = 16;               ///< pixels of padding around each layout
   double margin = kLayoutMargin;  ///< fraction of the image left free around the layouts
   /// Throws `InputError` naming the field for out-of-range values.

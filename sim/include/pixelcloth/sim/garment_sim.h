@@ -42,14 +42,10 @@ struct SimulationOptions {
   /// Reject when a cloth vertex ends deeper than this inside its collision part (metres; the 2 mm bar).
   double maxPenetration = 0.002;
   /// Cloth vertices held to the body: they follow their embedded point with the rest offset. Empty for the T-shirt;
-  /// `defaultPins` gives the necktie's knot.
+  /// generateDataset takes the garment's own (garment::GarmentTraits::pinned, the necktie's knot) when empty.
   std::vector<int> pinned;
   void validate() const;
 };
-
-/// The vertices a garment is held by: for the necktie those within 4 cm of the top of its rest placement (the knot
-/// end, which hangs from the collar); none for the T-shirt, which rests on the shoulders.
-std::vector<int> defaultPins(const garment::Garment& garment);
 
 /// Quasistatic drape of one garment on one body for any pose (DESIGN.md "Simulation"). Built once per garment and
 /// body: the system is factored and the dressed garment settled under gravity in the rest pose; `simulate` then

@@ -12,7 +12,8 @@ namespace pixelcloth::sim {
 
 /// Settings of `pixelcloth generate` (issue 4, "Datasets").
 struct GenerateOptions {
-  std::string garment = "tshirt";  ///< "tshirt" | "necktie"
+  /// What --garment names: a template ("tshirt", "necktie") or a garment folder (garment::resolveGarment).
+  std::string garment = "tshirt";
   int count = 0;                   ///< N: samples in the whole dataset
   std::uint64_t seed = 0;
   std::string shard = "0/1";         ///< "K/N": this job's slice of [0, count)
@@ -29,10 +30,11 @@ struct GenerateOptions {
 };
 
 /// The pose drawn for sample `index` at its `attempt`-th try: a PoseSampler seeded from (seed, index, attempt), so a
-/// sample's pose does not depend on which shard or thread makes it. For the necktie only the centre line moves.
-/// Sets `pruned` to the number of draws the sampler discarded (arm inside the torso) before this one.
-body::Pose samplePose(const body::Body& body, const std::string& garment, std::uint64_t seed, int index, int attempt,
-                      int* pruned = nullptr);
+/// sample's pose does not depend on which shard or thread makes it. Only the joints that drive the garment move
+/// (`traits.poseJoints`: the necktie's centre line); arm poses are pruned against the torso only when the arms drive
+/// it. Sets `pruned` to the number of draws the sampler discarded (arm inside the torso) before this one.
+body::Pose samplePose(const body::Body& body, const garment::GarmentTraits& traits, std::uint64_t seed, int index,
+                      int attempt, int* pruned = nullptr);
 
 /// What a generate run did.
 struct GenerateReport {

@@ -13,6 +13,7 @@
 #include <numeric>
 #include <sstream>
 #include <unordered_map>
+#include <vector>
 
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/geometry.h"
@@ -367,6 +368,44 @@ void DressingOptions::validate() const {
                    "dressing options: relaxTolerance must be positive, got " << relaxTolerance);
 }
 
+namespace {
+double areaRatioQuantile(const Eigen::VectorXd& ratios, double q) {
+  if (ratios.size() == 0) return 1.0;
+  std::vector<double> sorted(ratios.data(), ratios.data() + ratios.size());
+  const size_t k = static_cast<size_t>(q * static_cast<double>(sorted.size() - 1));
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k), sorted.end());
+  return sorted[k];
+}
+}  // namespace
+
+double Dressing::compressedAreaRatio() const { return areaRatioQuantile(areaRatioAfter, 0.05); }
+double Dressing::stretchedAreaRatio() const { return areaRatioQuantile(areaRatioAfter, 0.95); }
+
+double suggestedGrade(const Dressing& dressing) {
+  const double compressed = dressing.compressedAreaRatio(), stretched = dressing.stretchedAreaRatio();
+  if (compressed < kCompressedAreaRatio) return std::sqrt(std::max(compressed, 0.0) / kFittingCompressedRatio);
+  if (stretched > kStretchedAreaRatio) return std::sqrt(stretched / kFittingStretchedRatio);
+  return 1.0;
+}
+
+std::string fitAdvice(const Dressing& dressing) {
+  const double grade = std::clamp(suggestedGrade(dressing), 0.6, 1.6);
+  if (grade == 1.0) return {};
+  const bool large = grade < 1.0;
+  const std::string size = garment::nearestSize(grade);
+  std::ostringstream s;
+  s << std::setprecision(2) << "the garment is too " << (large ? "large" : "small")
+    << " for this body: a twentieth of its cloth is " << (large ? "compressed to less than " : "stretched to more than ")
+    << (large ? dressing.compressedAreaRatio() : dressing.stretchedAreaRatio()) << " of its pattern area (a fitting "
+    << "garment keeps about " << (large ? kFittingCompressedRatio : kFittingStretchedRatio) << "; "
+    << (large ? "below " : "above ") << (large ? kCompressedAreaRatio : kStretchedAreaRatio)
+    << (large ? " it crumples on the body" : " it is stretched tight") << "); grade it by about "
+    << std::setprecision(3) << grade << ": for the T-shirt template, `pixelcloth garment tshirt --grade " << grade
+    << " --out DIR` (nearest size " << size << ", `--size " << size << "`); for an imported garment, a "
+    << (large ? "smaller" : "larger") << " size of it";
+  return s.str();
+}
+
 std::string Dressing::summary() const {
   const std::vector<double> before = log2Of(areaRatioBefore), after = log2Of(areaRatioAfter);
   std::ostringstream s;
@@ -417,6 +456,32 @@ Eigen::MatrixX3d patternUDirections(const garment::Garment& garment, const Eigen
   return u;
 }
 
+namespace {
+/// A garment is dressed from where it sits: one more than 25 cm outside the body's box (another project's origin, another up
+/// axis) would be morphed and carried across a metre of space, or, where nothing of it is morphed (the necktie),
+/// left there. Refused, naming the move that would put it on the body.
+void checkPlacement(const body::Body& body, const garment::Garment& garment) {
+  const Eigen::AlignedBox3d cloth(garment.mesh.V.colwise().minCoeff().transpose(),
+                                  garment.mesh.V.colwise().maxCoeff().transpose());
+  const Eigen::AlignedBox3d skin(body.mesh.V.colwise().minCoeff().transpose(),
+                                 body.mesh.V.colwise().maxCoeff().transpose());
+  // A necktie hangs a few centimetres in front of the chest; a garment from another origin is a metre away.
+  constexpr double kFarGap = 0.25;
+  if (cloth.squaredExteriorDistance(skin) < kFarGap * kFarGap) return;
+  const Eigen::Vector3d move = skin.center() - cloth.center();
+  const Eigen::Vector3d size = cloth.sizes();
+  std::ostringstream s;
+  s << std::setprecision(3) << "dressing: garment '" << garment.name << "' (" << size.x() << " x " << size.y() << " x "
+    << size.z() << " m, centred at " << cloth.center().transpose() << ") lies "
+    << std::sqrt(cloth.squaredExteriorDistance(skin)) << " m outside the body's bounding box (centred at "
+    << skin.center().transpose() << ")";
+  if (size.z() > 1.5 * size.y()) s << " and lies along z (is the file Z-up? import it with --up z)";
+  s << "; import it moved onto the body, e.g. `pixelcloth garment --import OBJ --translate " << move.x() << " "
+    << move.y() << " " << move.z() << " ...`";
+  PIXELCLOTH_FAIL(s.str());
+}
+}  // namespace
+
 Dressing dressGarment(const body::Body& body, const Cage& bodyCage, const garment::Garment& garment,
                       const Cage& garmentCage, const DressingOptions& options) {
   options.validate();
@@ -427,6 +492,7 @@ Dressing dressGarment(const body::Body& body, const Cage& bodyCage, const garmen
   mesh.validate("dressing: garment '" + garment.name + "'");
   garmentCage.validate(mesh.F, n, "dressing: garment cage of '" + garment.name + "'");
   bodyCage.validate(body.mesh.F, body.mesh.numVertices(), "dressing: body cage");
+  checkPlacement(body, garment);
 
   const BodySurface surface(body);
   const PatternEdges patternEdges(garment);

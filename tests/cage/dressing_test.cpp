@@ -278,3 +278,56 @@ TEST(Dressing, ARelaxationStoppedAtItsCapSaysSo) {
   EXPECT_FALSE(d.relaxConverged);
   EXPECT_NE(d.summary().find("2 sweeps, stopped at the cap before settling"), std::string::npos) << d.summary();
 }
+
+namespace {
+
+// A garment graded well above or below the body it is dressed on is crumpled or stretched tight: the dressing says
+// so and names the grade that would fit; the default T-shirt on the mannequin it was sized for gets no advice.
+TEST(Dressing, AGarmentOfTheWrongSizeForItsBodyIsToldTheGradeToTry) {
+  const pcg::Dressing& fitting = dressedShirt().dressing;
+  EXPECT_GE(fitting.compressedAreaRatio(), pcg::kCompressedAreaRatio);
+  EXPECT_LE(fitting.stretchedAreaRatio(), pcg::kStretchedAreaRatio);
+  EXPECT_TRUE(pcg::fitAdvice(fitting).empty()) << pcg::fitAdvice(fitting);
+
+  auto dressedAt = [](double grade) {
+    pg::TShirtOptions options = pg::TShirtOptions{}.graded(grade);
+    options.targetVertices = 1500;
+    const pg::Garment shirt = pg::makeTShirt(options);
+    return pcg::dressGarment(coarseMannequin(), dressedShirt().bodyCage, shirt, pcg::garmentCage(shirt));
+  };
+  const pcg::Dressing large = dressedAt(1.35);
+  EXPECT_LT(large.compressedAreaRatio(), pcg::kCompressedAreaRatio);
+  EXPECT_NEAR(1.35 * pcg::suggestedGrade(large), 1.0, 0.1);  // back to about the size that fits
+  std::string advice = pcg::fitAdvice(large);
+  for (const char* part : {"too large", "--grade 0.", "--size"}) EXPECT_NE(advice.find(part), std::string::npos) << advice;
+
+  const pcg::Dressing small = dressedAt(0.75);
+  EXPECT_GT(small.stretchedAreaRatio(), pcg::kStretchedAreaRatio);
+  EXPECT_NEAR(0.75 * pcg::suggestedGrade(small), 1.0, 0.1);
+  advice = pcg::fitAdvice(small);
+  for (const char* part : {"too small", "--grade 1.", "--size"}) EXPECT_NE(advice.find(part), std::string::npos) << advice;
+}
+
+}  // namespace
+
+namespace {
+
+// A garment from another project's origin or up axis is refused before anything is morphed, naming the move.
+TEST(Dressing, AGarmentAwayFromTheBodyIsRefusedNamingTheMove) {
+  pg::Garment below = tshirt();
+  below.mesh.V.col(1).array() -= 1.2;  // its own project's origin, a metre and more below the body
+  const std::string message = inputErrorOf(
+      [&] { pcg::dressGarment(coarseMannequin(), dressedShirt().bodyCage, below, dressedShirt().shirtCage); });
+  EXPECT_NE(message.find("outside the body's bounding box"), std::string::npos) << message;
+  EXPECT_NE(message.find("--translate"), std::string::npos) << message;
+  EXPECT_EQ(message.find("--up z"), std::string::npos) << message;
+
+  pg::Garment lying = tshirt();  // Z-up: y and z swapped, and far from the body's centre
+  lying.mesh.V.col(1).swap(lying.mesh.V.col(2));
+  lying.mesh.V.col(0).array() += 2.0;
+  const std::string zUp = inputErrorOf(
+      [&] { pcg::dressGarment(coarseMannequin(), dressedShirt().bodyCage, lying, dressedShirt().shirtCage); });
+  EXPECT_NE(zUp.find("--up z"), std::string::npos) << zUp;
+}
+
+}  // namespace

@@ -46,10 +46,39 @@ struct Dressing {
   int relaxIterations = 0;
   double relaxResidual = 0;  ///< largest vertex move of the last sweep (metres)
   bool relaxConverged = true;  ///< false when the sweeps stopped at DressingOptions::maxRelaxIterations, still moving
+  /// 5th percentile of `areaRatioAfter`: how compressed the most compressed twentieth of the cloth is on the body
+  /// (0.62 for the default T-shirt on the mannequin; below kCompressedAreaRatio the garment is too large for the body
+  /// and its cage, morphed onto the body's, crumples it).
+  double compressedAreaRatio() const;
+  /// 95th percentile of `areaRatioAfter`: how stretched the most stretched twentieth is (1.33 for the default T-shirt
+  /// on the mannequin; above kStretchedAreaRatio the garment is too small for the body).
+  double stretchedAreaRatio() const;
   /// One line, e.g. "412 cage vertices, 37 pushed out (max 1.2 cm deep), 180 sweeps (residual 1.9e-05 m), log2 area
   /// ratio 5-95% [-0.61, 0.40] -> [-0.22, 0.18]".
   std::string summary() const;
 };
+
+/// A dressing whose compressedAreaRatio() is below this holds a garment too large for the body; one whose
+/// stretchedAreaRatio() is above kStretchedAreaRatio, a garment too small. Graded T-shirts on the mannequin: grade
+/// 1.15 gives 0.47 / 1.01, 1.35 gives 0.34 / 0.73, 0.75 gives 1.11 / 2.31 (areas go with the inverse square of the
+/// grade).
+inline constexpr double kCompressedAreaRatio = 0.5;
+inline constexpr double kStretchedAreaRatio = 2.0;
+/// What the default T-shirt reaches on the mannequin it was sized for (5th and 95th percentiles).
+inline constexpr double kFittingCompressedRatio = 0.62;
+inline constexpr double kFittingStretchedRatio = 1.33;
+
+/// The factor to grade the garment by so that its cloth is as compressed and stretched as a fitting garment's: below
+/// 1 for a garment too large (sqrt(compressedAreaRatio() / kFittingCompressedRatio)), above 1 for one too small
+/// (sqrt(stretchedAreaRatio() / kFittingStretchedRatio)), 1 when it fits (both ratios within their bounds).
+double suggestedGrade(const Dressing& dressing);
+
+/// Empty when the garment fits; otherwise one sentence for the user naming the ratio and the size to try, e.g. "the
+/// garment is too large for this body: a twentieth of its cloth is compressed to less than 0.34 of its pattern area
+/// (a fitting garment keeps about 0.62, below 0.5 it crumples on the body); grade it by about 0.74: for the T-shirt
+/// template, `pixelcloth garment tshirt --grade 0.74 --out DIR` (nearest size XS, `--size XS`); for an imported
+/// garment, a smaller size of it".
+std::string fitAdvice(const Dressing& dressing);
 
 /// Dresses `garment` on `body` (rest T-pose). Cage curves of `garmentCage` that have a namesake in `bodyCage` are
 /// morphed onto it by arc length between the junctions they share; curves without one (the shirt's side-panel lines)

@@ -260,7 +260,7 @@ void runBench(int repeats) {
       constexpr int kPoses = 8;
       double total = 0;
       for (int index = 0; index < kPoses; ++index)
-        total += medianSeconds(1, [&] { posed.simulate(sim::samplePose(body, "tshirt", 1, index, 0)); });
+        total += medianSeconds(1, [&] { posed.simulate(sim::samplePose(body, shirt.traits, 1, index, 0)); });
       return total / kPoses;
     };
     sim::SimulationOptions before;

@@ -1,4 +1,4 @@
-// pixelcloth cage: a garment template's cage (seams, openings, body loops, centre lines, splits) and its patches.
+// pixelcloth cage: a garment's cage (seams, openings, body loops, centre lines, splits) and its patches.
 #include <memory>
 
 #include "pixelcloth/core/atomic_file.h"
@@ -17,17 +17,15 @@ struct CageArgs {
 
 void runCage(const CageArgs& args) {
   core::checkOutputFolder(args.out);
-  viz::writeCageFolder(garment::makeGarment(args.garment, "--garment"), args.out, args.size);
+  viz::writeCageFolder(garment::resolveGarment(args.garment, "--garment"), args.out, args.size);
 }
 }  // namespace
 
 void registerCage(CLI::App& app) {
   auto args = std::make_shared<CageArgs>();
   CLI::App* verb = app.add_subcommand(
-      "cage", "Build a garment template's cage (seams, openings, body loops, centre lines) and split it into patches");
-  verb->add_option("--garment", args->garment, "Which garment: tshirt or necktie")
-      ->check(CLI::IsMember({"tshirt", "necktie"}))
-      ->capture_default_str();
+      "cage", "Build a garment's cage (seams, openings, body loops, centre lines) and split it into patches");
+  verb->add_option("--garment", args->garment, kGarmentHelp)->capture_default_str();
   verb->add_option("--out", args->out,
                    "Output folder: cage.json (curves and nodes), patches.json (per patch: id, side, vertices, ordered "
                    "boundary, bounding box in pixels), cage.png")

@@ -68,12 +68,12 @@ void runImport(const DatasetArgs& args) {
                                                       ? data::objSequence(objsPath)
                                                       : std::vector<std::filesystem::path>{objsPath};
   checkOutputFolder(args.out);
+  const Garment garment = resolveGarment(args.garment, "--garment");
   // Fail on a bad pose file before the body and the dressing are built.
-  data::readPoseSequence(args.poses, garment::poseSizeOf(args.garment));
+  data::readPoseSequence(args.poses, garment.traits.poseSize());
   PIXELCLOTH_CHECK(args.body.empty() || args.dressing.empty(),
                    "dataset import: --body and --dressing exclude each other: the dressing "
                    "folder holds the body its embedding was made on");
-  const Garment garment = makeGarment(args.garment, "--garment");
   Body body;
   Eigen::MatrixX3d rest;
   Embedding embedding;
@@ -153,16 +153,14 @@ void registerDataset(CLI::App& app) {
   CLI::App* import = verb->add_subcommand(
       "import",
       "Import garment shapes from another simulator or capture: an OBJ sequence (same vertices and faces "
-      "as the garment template) with one pose per frame");
+      "as the garment) with one pose per frame");
   import->add_option("--objs", args->objs, "Folder of OBJ files (natural name order), or one OBJ file")->required();
   import
       ->add_option("--poses", args->poses,
                    "Poses, one per OBJ: JSON (list of pose objects or of 90-number arrays) or CSV (one row of 90, "
-                   "or 36 for the necktie, numbers per frame; optional header)")
+                   "or 9 per joint that drives the garment, 36 for the necktie, numbers per frame; optional header)")
       ->required();
-  import->add_option("--garment", args->garment, "Garment template: tshirt or necktie")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"tshirt", "necktie"}));
+  import->add_option("--garment", args->garment, kGarmentHelp)->capture_default_str();
   import->add_option("--body", args->body,
                      "Body folder (pixelcloth body --out) to dress the garment on (default: the built-in mannequin)");
   import->add_option("--dressing", args->dressing,

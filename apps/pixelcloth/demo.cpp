@@ -30,6 +30,7 @@ void runDemo(const DemoArgs& args) {
   viz::demoDressing(report, body);
   viz::demoTShirtDataset(report, body, demo);
   viz::demoReconstruction(report, body);
+  viz::demoOwnGarment(report, body, demo);
   viz::demoNecktieDataset(report, body, demo);
   viz::demoPoseSampling(report, body, demo);
   viz::demoNetworks(report);
@@ -54,6 +55,10 @@ void registerDemo(CLI::App& app) {
       ->check(CLI::Range(2, 2000));
   verb->add_option("--tshirt-samples", args->options.tshirtSamples,
                    "Simulated T-shirt samples (80% train the spline's length model, 10% test the reconstruction)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 2000));
+  verb->add_option("--own-garment-samples", args->options.ownGarmentSamples,
+                   "Simulated samples of the imported T-shirt OBJ (the own-garment section)")
       ->capture_default_str()
       ->check(CLI::Range(1, 2000));
   verb->add_option("--learning-epochs", args->options.learningEpochs, "Epochs of each learned model")

@@ -1,4 +1,4 @@
-// pixelcloth dress: dress a garment template on a body (cage morph, push-out, relaxation, embedding).
+// pixelcloth dress: dress a garment (template or folder) on a body (cage morph, push-out, relaxation, embedding).
 #include <chrono>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -33,6 +33,7 @@ void runDress(const DressArgs& args) {
   using namespace pixelcloth::garment;
   using namespace pixelcloth::viz;
   checkOutputFolder(args.out);
+  const Garment garment = resolveGarment(args.garment, "--garment");  // before the body: a bad garment fails fast
   Body body;
   if (args.body.empty()) {
     PIXELCLOTH_INFO("dress: meshing the built-in mannequin");
@@ -40,7 +41,6 @@ void runDress(const DressArgs& args) {
   } else {
     body = loadBody(args.body);
   }
-  const Garment garment = makeGarment(args.garment, "--garment");
   const cage::Cage bodyCage = cage::bodyCage(body);
   const cage::Cage garmentCage = cage::garmentCage(garment);
   const auto start = std::chrono::steady_clock::now();
@@ -54,6 +54,7 @@ void runDress(const DressArgs& args) {
                                                                    << " sweeps with vertices still moving "
                                                                    << 1000 * dressing.relaxResidual
                                                                    << " mm a sweep; the dressing may be uneven");
+  if (const std::string advice = cage::fitAdvice(dressing); !advice.empty()) PIXELCLOTH_WARN("dress: " << advice);
   viz::writeDressingFolder(body, garment, dressing, args.out);
 }
 }  // namespace
@@ -62,9 +63,7 @@ void registerDress(CLI::App& app) {
   auto args = std::make_shared<DressArgs>();
   CLI::App* verb = app.add_subcommand(
       "dress", "Dress a garment on a body: cage morph, push-out, edge-length relaxation on the body, embedding");
-  verb->add_option("--garment", args->garment, "Which garment: tshirt or necktie")
-      ->check(CLI::IsMember({"tshirt", "necktie"}))
-      ->capture_default_str();
+  verb->add_option("--garment", args->garment, kGarmentHelp)->capture_default_str();
   verb->add_option("--body", args->body, "Body folder written by 'pixelcloth body' (default: the built-in mannequin)");
   verb->add_option("--out", args->out,
                    "Output folder: dressed.obj (dressed positions with the pattern UVs), area_distortion.png, "

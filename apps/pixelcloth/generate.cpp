@@ -31,7 +31,7 @@ void registerGenerate(CLI::App& app) {
   verb->add_option("--count", o.count, "Samples in the whole dataset (all shards)")->required();
   verb->add_option("--seed", o.seed, "Seed of poses and splits")->capture_default_str();
   verb->add_option("--out", args->out, "Dataset folder (created, or resumed when it holds a partial run)")->required();
-  verb->add_option("--garment", o.garment, "tshirt or necktie")->capture_default_str();
+  verb->add_option("--garment", o.garment, kGarmentHelp)->capture_default_str();
   verb->add_option("--shard", o.shard, "K/N: make only the K-th of N contiguous slices (merge with 'dataset merge')")
       ->capture_default_str();
   verb->add_option("--body", o.bodyFolder, "Body folder from 'pixelcloth body' (default: the built-in mannequin)");

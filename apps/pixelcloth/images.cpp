@@ -60,12 +60,12 @@ void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& 
   using namespace pixelcloth::viz;
   PIXELCLOTH_CHECK(args.values.empty() && args.image.empty(),
                    "images: --dataset takes the offsets from the dataset; leave out --values and --image");
+  PIXELCLOTH_CHECK(args.garment.empty(), "images: --garment " << args.garment << " with --dataset " << args.dataset
+                                                              << ": a dataset carries its garment; leave out --garment");
   PIXELCLOTH_CHECK(args.all != !args.samples.empty(), "images: with --dataset give --samples i,j,... or --all");
   checkOutputFolder(args.out);
   const data::Dataset dataset = data::openDataset(args.dataset);
   const data::DatasetSettings& settings = dataset.info.settings;
-  PIXELCLOTH_CHECK(args.garment.empty() || args.garment == settings.garment,
-                   "images: --garment " << args.garment << ", but " << args.dataset << " holds a " << settings.garment);
   std::vector<int> indices = args.samples;
   if (args.all)
     for (int row = 0; row < dataset.rows(); ++row) indices.push_back(settings.first() + row);
@@ -114,7 +114,7 @@ void runImages(const ImagesArgs& args) {
   PIXELCLOTH_CHECK(args.values.empty() != args.image.empty(),
                    "images: give exactly one of --values, --image and --dataset");
   if (!args.values.empty()) checkOutputFolder(args.out);
-  Garment garment = makeGarment(args.garment, "--garment");
+  Garment garment = resolveGarment(args.garment, "--garment");
   ClothImager imager(garment, options);
   if (!args.values.empty()) {
     Eigen::MatrixXf offsets = readNpyMatrixF(args.values, garment.mesh.numVertices(), 3);
@@ -141,8 +141,7 @@ void registerImages(CLI::App& app) {
       "Per-vertex offsets (float32 NPY, #V x 3: du dv dn) to a cloth image (EXR + PNG preview), or a cloth image back "
       "to per-vertex offsets, or the samples of a dataset to cloth images");
   verb->add_option("--garment", args->garment,
-                   "Garment template: tshirt or necktie (built with default options); required unless --dataset")
-      ->check(CLI::IsMember({"tshirt", "necktie"}));
+                   std::string(kGarmentHelp) + "; required unless --dataset, which carries its garment");
   verb->add_option("--values", args->values, "Per-vertex offsets to rasterise: float32 NPY of shape (#V, 3)");
   verb->add_option("--image", args->image, "Cloth image (EXR) to sample back to per-vertex offsets");
   verb->add_option("--dataset", args->dataset,

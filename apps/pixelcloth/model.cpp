@@ -24,7 +24,7 @@ void runModel(ModelArgs args) {
   const bool baseline = args.spec.architecture == learn::Architecture::FullyConnected ||
                         args.spec.architecture == learn::Architecture::FullyConnectedPca;
   if (baseline && args.spec.outputValues == 0)
-    args.spec.outputValues = 3 * garment::makeGarment(args.garment, "--garment").mesh.numVertices();
+    args.spec.outputValues = 3 * garment::resolveGarment(args.garment, "--garment").mesh.numVertices();
   std::cout << learn::summarize(args.spec).toJson().dump() << std::endl;
 }
 }  // namespace
@@ -42,7 +42,7 @@ void registerModel(CLI::App& app) {
                    "Floats in (pose plus marker features); 0: the pose alone (90, the necktie 36)")
       ->capture_default_str();
   verb->add_option("--garment", args->garment,
-                   "fc, fc-pca: the garment template whose vertices (3 values each) they predict")
+                   std::string("fc, fc-pca: whose vertices (3 values each) they predict. ") + kGarmentHelp)
       ->capture_default_str();
   verb->add_option("--values", args->spec.outputValues, "fc, fc-pca: values out instead of the garment's 3 x #V")
       ->capture_default_str();

@@ -40,11 +40,6 @@ struct MarkersArgs {
   std::string poseOut;
 };
 
-garment::Garment garmentByName(const std::string& name, const std::string& context) {
-  PIXELCLOTH_CHECK(name == "tshirt" || name == "necktie",
-                   context << ": unknown garment '" << name << "', expected tshirt or necktie");
-  return garment::makeGarment(name, "--garment");
-}
 
 void runMarkers(const MarkersArgs& args) {
   cage::MarkerOptions options;
@@ -53,7 +48,7 @@ void runMarkers(const MarkersArgs& args) {
   cage::CaptureOptions capture{args.noiseCm / 100, args.dropout, args.seed};
   capture.validate();
   if (args.dataset.empty()) {
-    const garment::Garment garment = garmentByName(args.garment, "markers --garment");
+    const garment::Garment garment = garment::resolveGarment(args.garment, "markers --garment");
     cage::writeMarkers(args.out, cage::defineMarkers(garment, cage::garmentCage(garment), options));
     PIXELCLOTH_INFO("markers: " << garment.name << " marker definition -> " << args.out);
     return;
@@ -74,7 +69,7 @@ void runMarkers(const MarkersArgs& args) {
 }
 
 struct ReconstructArgs {
-  std::string markers, pose, body, dressing, dataset, split = "test", out, method = "spline", writeBase;
+  std::string markers, pose, body, dressing, dataset, split = "test", out, method = "spline", writeBase, garment;
   double noiseCm = 0, dropout = 0, spacing = 0.10;
   std::uint64_t seed = 0;
   int meshes = 3;
@@ -90,6 +85,21 @@ struct ReconstructArgs {
   /// The options of the markers form alone that were given (refused with --dataset --write-base).
   std::vector<std::string> markersOptions;
 };
+
+/// The garment of the markers form: --garment, else the --dressing folder's own (a dataset carries its garment), else
+/// the template the marker file names.
+garment::Garment markersGarment(const ReconstructArgs& args, const cage::MarkerSet& markers) {
+  if (!args.garment.empty()) return garment::resolveGarment(args.garment, "reconstruct --garment");
+  const fs::path carried = fs::path(args.dressing) / "garment";
+  std::error_code ec;
+  if (!args.dressing.empty() && fs::is_regular_file(carried / "garment.json", ec)) return garment::loadGarment(carried);
+  try {
+    return garment::resolveGarment(markers.garment, args.markers + ": garment");
+  } catch (const core::InputError& error) {
+    PIXELCLOTH_FAIL(error.what() << "; give the garment folder the markers were defined on with --garment, or a "
+                                    "--dressing folder that carries it (a dataset)");
+  }
+}
 
 void runFromMarkers(const ReconstructArgs& args) {
   PIXELCLOTH_CHECK(!args.pose.empty(), "reconstruct --markers needs --pose (the body's pose, JSON)");
@@ -109,7 +119,7 @@ void runFromMarkers(const ReconstructArgs& args) {
   if (!args.lengthModel.empty() && args.lengthModel != "none")
     options.lengthModel = cage::readLengthModel(args.lengthModel);
   const body::Pose pose = body::readPose(args.pose);
-  const garment::Garment garment = garmentByName(markers.garment, args.markers);
+  const garment::Garment garment = markersGarment(args, markers);
   const cage::Cage cage = cage::garmentCage(garment);
   markers.validate(garment, cage, args.markers, true);
   body::Body body;
@@ -230,7 +240,8 @@ void registerReconstruct(CLI::App& app) {
       "markers",
       "Define markers on a garment's cage (every junction, points along each curve); with --dataset, take their "
       "positions from a sample (optionally noisy, with dropout) (docs/markers.md)");
-  markers->add_option("--garment", margs->garment, "tshirt or necktie (ignored with --dataset)")->capture_default_str();
+  markers->add_option("--garment", margs->garment, std::string(kGarmentHelp) + " (ignored with --dataset, which "
+                                                   "carries its garment)")->capture_default_str();
   markers->add_option("--spacing", margs->spacing, "Marker spacing along the curves, metres")->capture_default_str();
   markers->add_option("--dataset", margs->dataset, "Dataset folder to take positions from");
   markers->add_option("--sample", margs->sample, "Sample index in the dataset")->capture_default_str();
@@ -252,6 +263,9 @@ void registerReconstruct(CLI::App& app) {
   verb->add_option("--markers", args->markers, "Marker file with positions (pixelcloth markers; docs/markers.md)");
   verb->add_option("--pose", args->pose, "Pose of the body (JSON, as pixelcloth pose reads it)");
   verb->add_option("--body", args->body, "Body folder (default: the built-in mannequin, dressed on the fly)");
+  verb->add_option("--garment", args->garment,
+                   std::string(kGarmentHelp) + " (markers form; default: the --dressing folder's garment, else the "
+                   "template the marker file names)");
   verb->add_option("--dressing", args->dressing,
                    "Folder with body/, rest_positions.npy and embedding_*.npy (e.g. a dataset) instead of dressing");
   verb->add_option("--method", args->method, "linear, catmull_rom, spline or spline_anisotropic")

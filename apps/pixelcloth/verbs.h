@@ -5,6 +5,11 @@
 
 namespace pixelcloth::apps {
 
+/// Help of every --garment option: what garment::resolveGarment takes.
+inline constexpr const char* kGarmentHelp =
+    "Garment: a template (tshirt or necktie) or a garment folder (garment.obj + garment.json, from "
+    "`pixelcloth garment --out`, a template or --import)";
+
 /// Each verb lives in its own file and adds one subcommand to the `pixelcloth` app. The callback
 /// runs the verb; it throws `core::InputError` for bad input (exit code 2).
 void registerBody(CLI::App& app);

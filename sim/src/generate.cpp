@@ -150,7 +150,7 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
   settings.generator = simulationSettings(options.simulation);
   settings.source = "simulated";
 
-  PIXELCLOTH_INFO("generate: dressing the " << garment.name << " on the body");
+  PIXELCLOTH_INFO("generate: dressing " << garment.name << " on the body");
   const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), garment, cage::garmentCage(garment));
   const std::string advice = cage::fitAdvice(dressing);
   if (!advice.empty()) PIXELCLOTH_WARN("generate: " << advice);

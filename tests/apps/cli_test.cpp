@@ -705,8 +705,8 @@ TEST_F(CliTest, BenchPrintsOnlyJsonLines) {
 
 TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
   fs::path out = dir("out") / "report";
-  CliRun run =
-      runPixelcloth({"demo", "--out", out.string(), "--poses", "2", "--filter-poses", "16", "--tshirt-samples", "10"});
+  CliRun run = runPixelcloth({"demo", "--out", out.string(), "--poses", "2", "--filter-poses", "16", "--tshirt-samples",
+                              "10", "--own-garment-samples", "8"});
   ASSERT_EQ(run.status, 0) << run;
   ASSERT_TRUE(fs::is_regular_file(out / "index.html")) << listing(filesUnder(out));
   EXPECT_NO_THROW(nlohmann::json::parse(readFile(out / "report.json")));
@@ -720,10 +720,15 @@ TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
   }
   EXPECT_GT(pictures, 0) << "index.html shows no pictures";
   EXPECT_TRUE(noTemporaries(out));
+  // The imported T-shirt OBJ went through the pipeline as a garment folder, and its dataset carries it.
+  EXPECT_NE(html.find("Your own garment"), std::string::npos);
+  EXPECT_TRUE(isPng(out / "own_garment" / "predictions.png"));
+  EXPECT_EQ(nlohmann::json::parse(readFile(out / "own_garment" / "dataset" / "manifest.json"))["garment"], "my_shirt");
 
   // Run again into the same folder, as a user does after pulling: the datasets are made afresh, so the models the first
   // run left were trained on other samples; the demo retrains them instead of refusing to resume.
-  run = runPixelcloth({"demo", "--out", out.string(), "--poses", "2", "--filter-poses", "16", "--tshirt-samples", "10"});
+  run = runPixelcloth({"demo", "--out", out.string(), "--poses", "2", "--filter-poses", "16", "--tshirt-samples", "10",
+                       "--own-garment-samples", "8"});
   ASSERT_EQ(run.status, 0) << run;
   EXPECT_TRUE(noTemporaries(out));
 }

@@ -1,5 +1,6 @@
-// `pixelcloth garment --import OBJ --cage JSON --out DIR`, run as a program: a garment folder the template form wrote
-// comes back through the import form, and a broken cage is refused with exit code 2 before anything is written.
+// `pixelcloth garment --import OBJ [--cage JSON] --out DIR`, run as a program: a garment folder the template form wrote
+// comes back through the import form, with its cage or with the cage found automatically, and a broken cage or a
+// garment of the wrong size is refused with exit code 2 before anything is written.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -77,14 +78,37 @@ TEST_F(GarmentImportCli, ImportAndTemplateTogetherOrNeitherAreRefused) {
                                      (a / "garment.json").string(), "--out", out.string()}),
                       {"necktie", "--import"}));
   EXPECT_TRUE(refused(runPixelcloth({"garment", "--out", out.string()}), {"tshirt", "necktie", "--import"}));
-  EXPECT_TRUE(
-      refused(runPixelcloth({"garment", "--import", (a / "garment.obj").string(), "--out", out.string()}), {"--cage"}));
+  EXPECT_TRUE(refused(runPixelcloth({"garment", "necktie", "--up", "z", "--out", out.string()}), {"--up", "--import"}));
   EXPECT_TRUE(filesUnder(out).empty());
+}
+
+TEST_F(GarmentImportCli, ImportWithoutACageFindsTheOutline) {
+  const fs::path a = work_ / "A", d = work_ / "D";
+  const CliRun run =
+      runPixelcloth({"garment", "--import", (a / "garment.obj").string(), "--name", "tie", "--out", d.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  const nlohmann::json imported = pixelcloth::core::readJson(d / "garment.json");
+  EXPECT_EQ(imported.at("name"), "tie");
+  ASSERT_EQ(imported.at("openings").size(), 1u);
+  EXPECT_EQ(imported.at("openings")[0].at("name"), "outline");
+  EXPECT_EQ(imported.at("openings")[0].at("vertices").size(),
+            pixelcloth::core::readJson(a / "garment.json").at("openings")[0].at("vertices").size());
+  EXPECT_TRUE(imported.at("seams").empty());
+  EXPECT_EQ(filesUnder(d).size(), 4u);
+}
+
+TEST_F(GarmentImportCli, ImportOfTheWrongSizeIsRefusedNamingTheScale) {
+  const fs::path a = work_ / "A", e = work_ / "E";
+  const CliRun run =
+      runPixelcloth({"garment", "--import", (a / "garment.obj").string(), "--scale", "100", "--out", e.string()});
+  EXPECT_TRUE(refused(run, {(a / "garment.obj").string(), "m tall", "expected 0.05 to 3 m", "use --scale 1"}));
+  EXPECT_TRUE(filesUnder(e).empty());
 }
 
 TEST(GarmentImportCliHelp, ListsEveryOptionWithItsDefault) {
   const CliRun run = runPixelcloth({"garment", "--help"});
   ASSERT_EQ(run.status, 0) << run;
-  for (const std::string option : {"kind", "--import", "--cage", "--out", "--vertices", "tshirt", "necktie", "3000"})
+  for (const std::string option : {"kind", "--import", "--cage", "--name", "--up", "--scale", "--translate", "--out",
+                                   "--vertices", "tshirt", "necktie", "3000"})
     EXPECT_NE(run.out.find(option), std::string::npos) << option << run;
 }

@@ -62,7 +62,7 @@ void simulatedDataset(Report& report, const body::Body& body, std::uint64_t seed
   const sim::GenerateReport made = sim::generateDataset(report.folder() / folder, generate);
   const data::DatasetCheckReport checked = data::checkDataset(report.folder() / folder);
   const data::Dataset dataset = data::openDataset(report.folder() / folder);
-  const Garment garment = makeGarment(name);
+  const Garment garment = data::datasetGarment(dataset.info);
   patches::ClothImager imager(garment);
   PreviewOptions preview;
   preview.range = 0.05f;

@@ -16,6 +16,7 @@ struct DemoOptions {
   int filterPoses = 200;   ///< poses drawn, pruned and simulated for the filtering histograms
   int tshirtSamples = 40;  ///< the simulated T-shirt dataset; its test split is rebuilt from markers
   int learningEpochs = 8;  ///< epochs of each learned model on that dataset
+  int ownGarmentSamples = 20;  ///< the simulated dataset of the imported garment (demoOwnGarment)
   std::uint64_t seed = 1;
 };
 
@@ -57,6 +58,11 @@ void demoTShirtDataset(Report& report, const body::Body& body, const DemoOptions
 
 /// The T-shirt dataset's test split rebuilt from markers by every method (reconstruction/); needs demoTShirtDataset.
 void demoReconstruction(Report& report, const body::Body& body);
+
+/// A T-shirt OBJ written as other cloth programs write theirs (tube sleeves, Z up, centimetres, another origin),
+/// imported without a cage file and taken through dressing, `demo.ownGarmentSamples` simulated samples, marker
+/// reconstruction, a fully connected PCA model, prediction and evaluation (own_garment/); needs demoBody's folder.
+void demoOwnGarment(Report& report, const body::Body& body, const DemoOptions& demo);
 
 /// A simulated necktie dataset of 6 samples, checked, with a contact sheet (dataset_necktie/).
 void demoNecktieDataset(Report& report, const body::Body& body, const DemoOptions& demo);

@@ -149,6 +149,11 @@ GarmentTraits legacyTemplateTraits(const std::string& name, const core::Mesh& me
 Garment resolveGarment(const std::string& nameOrFolder, const std::string& context) {
   std::error_code ec;
   const fs::path path(nameOrFolder);
+  bool isTemplate = false;
+  for (const std::string& name : templateNames()) isTemplate = isTemplate || name == nameOrFolder;
+  const bool garmentFolder =
+      fs::is_regular_file(path / "garment.json", ec) && fs::is_regular_file(path / "garment.obj", ec);
+  if (isTemplate && !garmentFolder) return makeGarment(nameOrFolder, context);  // a stray folder of that name aside
   if (!nameOrFolder.empty() && fs::exists(path, ec)) {
     PIXELCLOTH_CHECK(fs::is_directory(path, ec),
                      context << " " << nameOrFolder
@@ -160,8 +165,6 @@ Garment resolveGarment(const std::string& nameOrFolder, const std::string& conte
                                 "as `pixelcloth garment` writes it (a template's --out or --import's)");
     return loadGarment(path);
   }
-  for (const std::string& name : templateNames())
-    if (name == nameOrFolder) return makeGarment(name, context);
   PIXELCLOTH_FAIL(context << " '" << nameOrFolder << "' is neither a garment template (" << knownTemplates()
                           << ") nor an existing garment folder (garment.obj + garment.json from `pixelcloth garment`)");
 }

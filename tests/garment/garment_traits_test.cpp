@@ -119,6 +119,16 @@ TEST(GarmentTraits, ResolveTakesATemplateNameOrAGarmentFolder) {
                        {"dress --garment", "skirt", "tshirt", "necktie", "garment folder"}));
   EXPECT_TRUE(
       mentions(inputErrorOf([&] { pg::resolveGarment(dir.string()); }), {dir.string(), "garment.obj", "garment.json"}));
+  // A folder called like a template is the template unless it is a garment folder.
+  const fs::path cwd = fs::current_path();
+  fs::current_path(dir);
+  fs::create_directories("necktie");
+  EXPECT_EQ(pg::resolveGarment("necktie").traits.poseJoints, 4);
+  pg::Garment bow = smallNecktie();
+  bow.name = "bow";
+  pg::saveGarment("necktie", bow);
+  EXPECT_EQ(pg::resolveGarment("necktie").name, "bow");
+  fs::current_path(cwd);
   std::ofstream(dir / "file.obj") << "v 0 0 0\n";
   EXPECT_TRUE(
       mentions(inputErrorOf([&] { pg::resolveGarment((dir / "file.obj").string()); }), {"file.obj", "not a garment"}));

@@ -276,8 +276,9 @@ Garment makeGarment(const std::string& name, const TemplateRequest& request, con
 GarmentTraits templateTraits(const std::string& name, const std::string& context = "garment");
 
 /// What every verb's --garment takes: a template name (tshirt, necktie) or a garment folder (garment.obj +
-/// garment.json, as `pixelcloth garment` writes it, template or imported). A path that exists is read as a folder;
-/// anything else must be a template name. Throws `InputError` "<context>: 'X' is neither a garment template (tshirt,
+/// garment.json, as `pixelcloth garment` writes it, template or imported). A garment folder is read as one, even when
+/// it is called like a template (`pixelcloth garment tshirt --out tshirt`); a template name is the template when no
+/// garment folder of that name is there; any other existing path must be a garment folder. Throws `InputError` "<context>: 'X' is neither a garment template (tshirt,
 /// necktie) nor a garment folder (...)" naming what was expected.
 Garment resolveGarment(const std::string& nameOrFolder, const std::string& context = "--garment");
 

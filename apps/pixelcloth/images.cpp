@@ -155,9 +155,11 @@ void registerImages(CLI::App& app) {
                    "With --values: output folder (cloth.exr, cloth.png); with --image: output NPY file (#V, 3); with "
                    "--dataset: output folder (cloth_NNNNNN.exr and .png per sample)")
       ->required();
-  verb->add_option("--width", args->width, "Image width in pixels (default 0: 256 for the T-shirt, 64 for the necktie)")
+  verb->add_option("--width", args->width,
+                   "Image width in pixels (default 0: the garment's, 256 for the T-shirt, 64 for the necktie)")
       ->check(CLI::Range(0, 8192));
-  verb->add_option("--height", args->height, "Image height in pixels (default 0: 256)")->check(CLI::Range(0, 8192));
+  verb->add_option("--height", args->height, "Image height in pixels (default 0: the garment's, 256)")
+      ->check(CLI::Range(0, 8192));
   verb->add_option("--padding", args->padding, "Padding around each layout in pixels (default 16)")
       ->check(CLI::Range(0, 4096));
   verb->callback([args] { runImages(*args); });

@@ -85,9 +85,7 @@ const std::vector<std::string>& templateNames() {
 }
 
 Garment makeGarment(const std::string& name, const std::string& context) {
-  if (name == "tshirt") return makeTShirt();
-  if (name == "necktie") return makeNecktie();
-  PIXELCLOTH_FAIL(context << ": unknown garment template '" << name << "'; expected one of: " << knownTemplates());
+  return makeGarment(name, TemplateRequest{}, context);
 }
 
 Garment makeGarment(const std::string& name, const TemplateRequest& request, const std::string& context) {

@@ -3,6 +3,7 @@
 // pictures.
 #include "pixelcloth/garment/garment.h"
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/garment/obj_import.h"
+#include "pixelcloth/patches/body_fit.h"
 #include "pixelcloth/viz/pictures.h"
 #include "pixelcloth/viz/previews.h"
 #include "verbs.h"
@@ -30,6 +32,7 @@ struct GarmentArgs {
   int vertices = 0;
   std::string size;    ///< --size XS..XXL of a template (sizeGrade)
   double grade = 1.0;  ///< --grade F of a template
+  std::string fitTo;   ///< --fit-to: body folder (or "mannequin") to place the cage lines from (empty: none)
 };
 
 /// Exactly one of a template name or --import; --cage, --name and the placement options go with --import, --vertices
@@ -50,6 +53,8 @@ void checkGarmentArgs(const GarmentArgs& args, bool placementGiven) {
                    "garment: --size and --grade grade a template; an imported garment keeps its size");
   PIXELCLOTH_CHECK(args.size.empty() || args.grade == 1.0, "garment: --size " << args.size << " and --grade "
                                                                             << args.grade << " given; expected one");
+  PIXELCLOTH_CHECK(!args.importObj.empty() || args.fitTo.empty(),
+                   "garment: --fit-to places the cage lines of an imported OBJ; a template has its own");
   PIXELCLOTH_CHECK(!args.importObj.empty() || !placementGiven,
                    "garment: --up, --scale and --translate place an imported OBJ; they only go with --import OBJ");
   PIXELCLOTH_CHECK(args.cage.empty() || args.name.empty(),
@@ -81,6 +86,14 @@ void runGarment(const GarmentArgs& args, bool placementGiven) {
     } else {
       garment = importGarment(args.importObj, args.cage);
       placeGarment(garment, placement);
+    }
+    if (!args.fitTo.empty()) {
+      // The body is read before anything is written; a folder of that name wins over the built-in mannequin.
+      const bool builtIn = args.fitTo == "mannequin" && !std::filesystem::exists(args.fitTo);
+      if (builtIn) PIXELCLOTH_INFO("garment: meshing the built-in mannequin");
+      const Body body = builtIn ? makeMannequin() : loadBody(args.fitTo);
+      const patches::BodyFitReport fit = patches::fitGarmentToBody(garment, body);
+      PIXELCLOTH_INFO("garment: fitted to " << args.fitTo << ": " << fit.summary());
     }
   } else {
     TemplateRequest request;
@@ -133,6 +146,12 @@ void registerGarment(CLI::App& app) {
                                             "X Y Z: with --import, then add this to the positions, metres (default: "
                                             "0 0 0)")
                                ->expected(3);
+  verb->add_option("--fit-to", args->fitTo,
+                   "With --import: a body folder from 'pixelcloth body' (or 'mannequin', the built-in one) to fit the "
+                   "garment to: its neckline is aligned to the body's, and the chest, waist and bicep loops, centre "
+                   "lines and side-panel splits are placed where the body's cage meets the garment dressed on it and "
+                   "cut into the mesh; patches larger than 128 px of a 512 px image are split, so that per-patch models "
+                   "can train on it (default: none; the garment keeps one patch per pattern piece)");
   verb->add_option("--out", args->out, "Output folder (garment.obj with vt, garment.json, pattern.png, garment.png)")
       ->required();
   verb->add_option("--vertices", args->vertices,

@@ -1,0 +1,26 @@
+#pragma once
+// Lines added to a finished garment mesh: a mesh edge split in two, and a straight pattern-space line made a chain of
+// mesh edges by splitting the triangles it crosses (the body loops and patch splits placed on an imported garment).
+
+#include <vector>
+
+#include "pixelcloth/garment/garment.h"
+
+namespace pixelcloth::garment {
+
+/// Splits the mesh edge (a, b) at a + t (b - a): a new vertex whose rest position, and UV in every layout whose faces
+/// hold the edge, are interpolated; each face on the edge is split in two (same layout and panel, same orientation);
+/// the new vertex goes between a and b in every seam, opening and cage line running along the edge. The garment is no
+/// longer a template's exact mesh (its recipe is cleared). Returns the new vertex. Throws `InputError` when (a, b) is
+/// no mesh edge or t is not strictly between 0 and 1.
+int splitEdge(Garment& garment, int a, int b, double t);
+
+/// Makes the straight pattern-space segment from vertex `from` to vertex `to` (both in `layout`) a chain of mesh edges:
+/// walking from `from` through the layout's triangles, each edge the segment crosses is split where it crosses it, or,
+/// when the crossing lies within `snap` (a fraction of the edge) of an end, that vertex is taken instead (so no sliver
+/// triangles are made; the chain then bends by at most that much). Crossed seams, openings and cage lines get the new
+/// vertices. Returns the chain from `from` to `to`, consecutive vertices sharing a mesh edge. Throws `InputError`
+/// naming the vertices when the segment leaves the layout (a concave outline) or either end is not in the layout.
+std::vector<int> insertPatternLine(Garment& garment, int layout, int from, int to, double snap = 0.2);
+
+}  // namespace pixelcloth::garment

@@ -1,0 +1,161 @@
+// Splitting a garment's triangles along added lines (see pattern_lines.h).
+#include "pixelcloth/garment/pattern_lines.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "pixelcloth/core/error.h"
+
+namespace pixelcloth::garment {
+
+namespace {
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// Puts `n` between every consecutive a, b (either order) of `chain`; `closed` chains also between last and first.
+void insertIntoChain(std::vector<int>& chain, bool closed, int a, int b, int n) {
+  const size_t count = chain.size();
+  for (size_t i = 0; i + 1 < count + (closed ? 1 : 0); ++i) {
+    const int x = chain[i], y = chain[(i + 1) % count];
+    if ((x == a && y == b) || (x == b && y == a)) {
+      chain.insert(chain.begin() + static_cast<long>(i) + 1, n);
+      return;  // a simple chain runs along an edge at most once
+    }
+  }
+}
+
+Eigen::Vector2d uvOf(const Garment& garment, int v, int layout) { return garment.mesh.UV.row(garment.vertexUV(v, layout)); }
+
+}  // namespace
+
+int splitEdge(Garment& garment, int a, int b, double t) {
+  core::Mesh& mesh = garment.mesh;
+  PIXELCLOTH_CHECK(std::isfinite(t) && t > 0 && t < 1,
+                   garment.name << ": splitting edge (" << a << ", " << b << ") at " << t << ", expected 0 < t < 1");
+  std::vector<int> faces;
+  for (int f = 0; f < mesh.numFaces(); ++f) {
+    int hits = 0;
+    for (int k = 0; k < 3; ++k) hits += mesh.F(f, k) == a || mesh.F(f, k) == b;
+    if (hits == 2) faces.push_back(f);
+  }
+  PIXELCLOTH_CHECK(!faces.empty(), garment.name << ": (" << a << ", " << b << ") is no edge of the mesh");
+
+  const int n = mesh.numVertices();
+  mesh.V.conservativeResize(n + 1, Eigen::NoChange);
+  mesh.V.row(n) = (1 - t) * mesh.V.row(a) + t * mesh.V.row(b);
+  garment.vertexUV.conservativeResize(n + 1, Eigen::NoChange);
+  garment.vertexUV.row(n).setConstant(-1);
+  for (int f : faces) {
+    const int layout = garment.faceLayout[f];
+    if (garment.vertexUV(n, layout) >= 0) continue;
+    const int row = static_cast<int>(mesh.UV.rows());
+    mesh.UV.conservativeResize(row + 1, Eigen::NoChange);
+    mesh.UV.row(row) = (1 - t) * uvOf(garment, a, layout) + t * uvOf(garment, b, layout);
+    garment.vertexUV(n, layout) = row;
+  }
+
+  // Face (x0, x1, x2) with the edge at corners (i, i + 1) becomes (x_i, n, x_i+2) and (n, x_i+1, x_i+2).
+  const int numFaces = mesh.numFaces();
+  const int added = static_cast<int>(faces.size());
+  mesh.F.conservativeResize(numFaces + added, Eigen::NoChange);
+  mesh.FUV.conservativeResize(numFaces + added, Eigen::NoChange);
+  garment.faceLayout.conservativeResize(numFaces + added);
+  garment.facePanel.conservativeResize(numFaces + added);
+  for (int k = 0; k < added; ++k) {
+    const int f = faces[k], g = numFaces + k;
+    int i = 0;
+    while (!((mesh.F(f, i) == a && mesh.F(f, (i + 1) % 3) == b) || (mesh.F(f, i) == b && mesh.F(f, (i + 1) % 3) == a)))
+      ++i;
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    const int uvN = garment.vertexUV(n, garment.faceLayout[f]);
+    const Eigen::RowVector3i corners = mesh.F.row(f), uvs = mesh.FUV.row(f);
+    mesh.F.row(f) << corners[i], n, corners[i2];
+    mesh.FUV.row(f) << uvs[i], uvN, uvs[i2];
+    mesh.F.row(g) << n, corners[i1], corners[i2];
+    mesh.FUV.row(g) << uvN, uvs[i1], uvs[i2];
+    garment.faceLayout[g] = garment.faceLayout[f];
+    garment.facePanel[g] = garment.facePanel[f];
+  }
+  for (auto& [name, values] : mesh.vertexAttributes) {
+    values.conservativeResize(n + 1, Eigen::NoChange);
+    values.row(n) = (1 - t) * values.row(a) + t * values.row(b);
+  }
+  for (auto& [name, values] : mesh.faceAttributes) {
+    values.conservativeResize(numFaces + added);
+    for (int k = 0; k < added; ++k) values[numFaces + k] = values[faces[k]];
+  }
+
+  for (Seam& seam : garment.seams) insertIntoChain(seam.vertices, false, a, b, n);
+  for (Opening& opening : garment.openings) insertIntoChain(opening.vertices, true, a, b, n);
+  for (CageLine& line : garment.lines) insertIntoChain(line.vertices, line.closed, a, b, n);
+  garment.recipe = nullptr;
+  return n;
+}
+
+std::vector<int> insertPatternLine(Garment& garment, int layout, int from, int to, double snap) {
+  const int numVertices = garment.mesh.numVertices();
+  PIXELCLOTH_CHECK(layout >= 0 && layout < garment.numLayouts(),
+                   garment.name << ": layout " << layout << " does not exist");
+  for (int v : {from, to})
+    PIXELCLOTH_CHECK(v >= 0 && v < numVertices && garment.vertexUV(v, layout) >= 0,
+                     garment.name << ": vertex " << v << " is not in layout " << garment.layouts[layout]);
+  PIXELCLOTH_CHECK(snap >= 0 && snap < 0.5, garment.name << ": snap " << snap << ", expected 0 to 0.5");
+  const Eigen::Vector2d target = uvOf(garment, to, layout);
+
+  std::vector<int> chain = {from};
+  int current = from;
+  // Every step reaches a vertex nearer the target along the segment; a bound guards against a loop all the same.
+  for (int step = 0; current != to; ++step) {
+    PIXELCLOTH_CHECK(step <= garment.mesh.numVertices(),
+                     garment.name << ": the line from vertex " << from << " to " << to << " in layout "
+                                  << garment.layouts[layout] << " does not reach its end");
+    const core::Mesh& mesh = garment.mesh;
+    const Eigen::Vector2d p = uvOf(garment, current, layout);
+    const Eigen::Vector2d d = target - p;
+    // Among the layout's faces around `current`, the one whose wedge holds the direction to the target.
+    int bestA = -1, bestB = -1;
+    double best = -std::numeric_limits<double>::infinity();
+    bool reached = false;
+    for (int f = 0; f < mesh.numFaces() && !reached; ++f) {
+      if (garment.faceLayout[f] != layout) continue;
+      for (int k = 0; k < 3; ++k) {
+        if (mesh.F(f, k) != current) continue;
+        const int a = mesh.F(f, (k + 1) % 3), b = mesh.F(f, (k + 2) % 3);  // counter-clockwise after `current`
+        if (a == to || b == to) {
+          reached = true;
+          break;
+        }
+        const Eigen::Vector2d ea = uvOf(garment, a, layout) - p, eb = uvOf(garment, b, layout) - p;
+        const double score = std::min(cross2(ea, d) / (ea.norm() * d.norm()), cross2(d, eb) / (eb.norm() * d.norm()));
+        if (score > best) best = score, bestA = a, bestB = b;
+      }
+    }
+    if (reached) {
+      chain.push_back(to);
+      break;
+    }
+    PIXELCLOTH_CHECK(bestA >= 0 && best > -1e-9,
+                     garment.name << ": the straight pattern line from vertex " << from << " to vertex " << to
+                                  << " leaves layout " << garment.layouts[layout] << " at vertex " << current
+                                  << " (the layout's outline is concave there)");
+    const Eigen::Vector2d a = uvOf(garment, bestA, layout), e = uvOf(garment, bestB, layout) - a;
+    const double denominator = cross2(e, d);
+    const double t = denominator == 0 ? 0.0 : std::clamp(cross2(p - a, d) / denominator, 0.0, 1.0);
+    int next;
+    if (t <= snap)
+      next = bestA;
+    else if (t >= 1 - snap)
+      next = bestB;
+    else
+      next = splitEdge(garment, bestA, bestB, t);
+    PIXELCLOTH_CHECK(std::find(chain.begin(), chain.end(), next) == chain.end(),
+                     garment.name << ": the line from vertex " << from << " to " << to << " in layout "
+                                  << garment.layouts[layout] << " comes back to vertex " << next);
+    chain.push_back(next);
+    current = next;
+  }
+  return chain;
+}
+
+}  // namespace pixelcloth::garment

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "pixelcloth/core/json_io.h"
+#include "pixelcloth/garment/obj_import.h"
 #include "support/cli.h"
 #include "support/test_util.h"
 
@@ -105,10 +107,42 @@ TEST_F(GarmentImportCli, ImportOfTheWrongSizeIsRefusedNamingTheScale) {
   EXPECT_TRUE(filesUnder(e).empty());
 }
 
+TEST(GarmentFitCli, ATShirtObjFittedToTheMannequinComesBackWithTheTemplatesCageLinesAnd28Patches) {
+  const fs::path work = freshDir("fit");
+  pixelcloth::garment::ObjExportOptions file;
+  file.groups = true;
+  pixelcloth::garment::exportGarmentObj(pixelcloth::garment::makeTShirt(), work / "shirt.obj", file);
+  const CliRun run = runPixelcloth({"garment", "--import", (work / "shirt.obj").string(), "--fit-to", "mannequin",
+                                    "--out", (work / "fitted").string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_NE(run.err.find("28 patches"), std::string::npos) << run;
+  const nlohmann::json fitted = pixelcloth::core::readJson(work / "fitted" / "garment.json");
+  std::vector<std::string> lines;
+  for (const nlohmann::json& line : fitted.at("cage_lines")) lines.push_back(line.at("name"));
+  std::sort(lines.begin(), lines.end());
+  EXPECT_EQ(lines, (std::vector<std::string>{"bicep_left", "bicep_right", "centre_back", "centre_front", "chest",
+                                             "side_panel_back_left", "side_panel_back_right", "side_panel_front_left",
+                                             "side_panel_front_right", "waist"}));
+  EXPECT_EQ(filesUnder(work / "fitted").size(), 4u);
+}
+
+TEST(GarmentFitCli, FitToATemplateOrAMissingBodyIsRefusedAndNothingIsWritten) {
+  const fs::path work = freshDir("fit_refused");
+  EXPECT_TRUE(refused(runPixelcloth({"garment", "tshirt", "--fit-to", "mannequin", "--out", (work / "A").string()}),
+                      {"--fit-to", "template"}));
+  EXPECT_TRUE(filesUnder(work / "A").empty());
+  pixelcloth::garment::exportGarmentObj(pixelcloth::garment::makeNecktie(), work / "tie.obj");
+  const fs::path nowhere = work / "no_such_body";
+  EXPECT_TRUE(refused(runPixelcloth({"garment", "--import", (work / "tie.obj").string(), "--fit-to",
+                                     nowhere.string(), "--out", (work / "B").string()}),
+                      {nowhere.string()}));
+  EXPECT_TRUE(filesUnder(work / "B").empty());
+}
+
 TEST(GarmentImportCliHelp, ListsEveryOptionWithItsDefault) {
   const CliRun run = runPixelcloth({"garment", "--help"});
   ASSERT_EQ(run.status, 0) << run;
-  for (const std::string option : {"kind", "--import", "--cage", "--name", "--up", "--scale", "--translate", "--out",
+  for (const std::string option : {"kind", "--import", "--cage", "--name", "--up", "--scale", "--translate", "--fit-to", "--out",
                                    "--vertices", "tshirt", "necktie", "3000"})
     EXPECT_NE(run.out.find(option), std::string::npos) << option << run;
 }

@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <set>
+#include <utility>
 
 #include "pixelcloth/core/error.h"
 
@@ -102,6 +105,28 @@ std::vector<int> insertPatternLine(Garment& garment, int layout, int from, int t
                      garment.name << ": vertex " << v << " is not in layout " << garment.layouts[layout]);
   PIXELCLOTH_CHECK(snap >= 0 && snap < 0.5, garment.name << ": snap " << snap << ", expected 0 to 0.5");
   const Eigen::Vector2d target = uvOf(garment, to, layout);
+  // The layout's outline vertices (on an edge that only one of its faces has): the line never turns onto one of them
+  // on its way, which would run it along the outline, or through a vertex another line across the seam takes too.
+  std::map<std::pair<int, int>, int> edgeUses;
+  for (int f = 0; f < garment.mesh.numFaces(); ++f)
+    if (garment.faceLayout[f] == layout)
+      for (int k = 0; k < 3; ++k) {
+        const int a = garment.mesh.F(f, k), b = garment.mesh.F(f, (k + 1) % 3);
+        ++edgeUses[{std::min(a, b), std::max(a, b)}];
+      }
+  std::set<int> outline;
+  for (const auto& [edge, uses] : edgeUses)
+    if (uses == 1) outline.insert({edge.first, edge.second});
+  // Nor does it take a step along an edge of a seam, opening or cage line: it crosses other curves, never runs on them.
+  auto key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  std::set<std::pair<int, int>> curveEdges;
+  auto addCurve = [&](const std::vector<int>& vertices, bool closed) {
+    for (size_t k = 0; k + 1 < vertices.size() + (closed ? 1 : 0); ++k)
+      curveEdges.insert(key(vertices[k], vertices[(k + 1) % vertices.size()]));
+  };
+  for (const Seam& seam : garment.seams) addCurve(seam.vertices, false);
+  for (const Opening& opening : garment.openings) addCurve(opening.vertices, true);
+  for (const CageLine& line : garment.lines) addCurve(line.vertices, line.closed);
 
   std::vector<int> chain = {from};
   int current = from;
@@ -142,13 +167,26 @@ std::vector<int> insertPatternLine(Garment& garment, int layout, int from, int t
     const Eigen::Vector2d a = uvOf(garment, bestA, layout), e = uvOf(garment, bestB, layout) - a;
     const double denominator = cross2(e, d);
     const double t = denominator == 0 ? 0.0 : std::clamp(cross2(p - a, d) / denominator, 0.0, 1.0);
+    // An end of the crossed edge within `snap` of its length from the line is taken instead of a split: by distance
+    // from the line, not along the edge, so that a line nearly parallel to an edge takes its end rather than cutting
+    // two slivers off it.
+    const Eigen::Vector2d unit = d.normalized();
+    const double fromA = std::abs(cross2(a - p, unit)), fromB = std::abs(cross2(a + e - p, unit));
+    // (nor onto a vertex whose last step to `to` would run along a curve)
+    auto takes = [&](int w, double distance) {
+      return distance <= snap * e.norm() && !outline.count(w) && !curveEdges.count(key(current, w)) &&
+             !curveEdges.count(key(w, to));
+    };
+    const bool takeA = takes(bestA, fromA), takeB = takes(bestB, fromB);
     int next;
-    if (t <= snap)
+    if (takeA && (!takeB || fromA <= fromB)) {
       next = bestA;
-    else if (t >= 1 - snap)
+    } else if (takeB) {
       next = bestB;
-    else
+    } else {
       next = splitEdge(garment, bestA, bestB, t);
+      if (curveEdges.erase(key(bestA, bestB))) curveEdges.insert({key(bestA, next), key(next, bestB)});
+    }
     PIXELCLOTH_CHECK(std::find(chain.begin(), chain.end(), next) == chain.end(),
                      garment.name << ": the line from vertex " << from << " to " << to << " in layout "
                                   << garment.layouts[layout] << " comes back to vertex " << next);

@@ -724,6 +724,11 @@ TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
   EXPECT_NE(html.find("Your own garment"), std::string::npos);
   EXPECT_TRUE(isPng(out / "own_garment" / "predictions.png"));
   EXPECT_EQ(nlohmann::json::parse(readFile(out / "own_garment" / "dataset" / "manifest.json"))["garment"], "my_shirt");
+  // Fitted to the body: it carries the template's cage lines, and a decoder per patch was trained on it.
+  const nlohmann::json fitted = nlohmann::json::parse(readFile(out / "own_garment" / "garment" / "garment.json"));
+  EXPECT_GE(fitted.at("cage_lines").size(), 10u);
+  EXPECT_TRUE(fs::is_regular_file(out / "own_garment" / "model_patch" / "patch_00" / "model.json"))
+      << listing(filesUnder(out / "own_garment" / "model_patch"));
 
   // Run again into the same folder, as a user does after pulling: the datasets are made afresh, so the models the first
   // run left were trained on other samples; the demo retrains them instead of refusing to resume.

@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
+#include <utility>
+#include <vector>
 #include <set>
 #include <string>
 
@@ -39,6 +42,23 @@ std::set<std::string> lineNames(const pg::Garment& g) {
   return names;
 }
 
+/// Mesh edges that two curves (seams, openings, cage lines) both run along: the lines must cross, never overlap.
+int sharedCurveEdges(const pg::Garment& g) {
+  std::map<std::pair<int, int>, int> uses;
+  auto add = [&](const std::vector<int>& vertices, bool closed) {
+    for (size_t k = 0; k + 1 < vertices.size() + (closed ? 1 : 0); ++k) {
+      const int a = vertices[k], b = vertices[(k + 1) % vertices.size()];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  };
+  for (const pg::Seam& seam : g.seams) add(seam.vertices, false);
+  for (const pg::Opening& opening : g.openings) add(opening.vertices, true);
+  for (const pg::CageLine& line : g.lines) add(line.vertices, line.closed);
+  int shared = 0;
+  for (const auto& [edge, count] : uses) shared += count > 1;
+  return shared;
+}
+
 double largestPatch(const pg::Garment& g) {
   double largest = 0;
   for (const pp::Patch& patch : pp::garmentPatches(g))
@@ -66,6 +86,7 @@ TEST(BodyFit, TheTemplateExportedAsAPlainObjComesBackWithItsCageAndPatchCount) {
   EXPECT_EQ(report.patches, 28);
   EXPECT_LE(largestPatch(g), 128);
   EXPECT_EQ(g.mesh.numVertices(), tshirt().mesh.numVertices() + report.addedVertices);
+  EXPECT_EQ(sharedCurveEdges(g), 0);
   // Already where the template sits: the neckline alignment moves it by well under a centimetre.
   EXPECT_LT(report.moved.norm(), 0.01);
   // The lines lie where the template's do: the chest loop's mean height within 3 cm.
@@ -107,6 +128,7 @@ TEST(BodyFit, ATubeSleevedShirtAsUsersFilesComeSplitsIntoPatchesThatFitTheirImag
   EXPECT_GT(patches, 28u);
   EXPECT_EQ(report.patches, static_cast<int>(patches));
   EXPECT_LE(largestPatch(g), 128);
+  EXPECT_EQ(sharedCurveEdges(g), 0);
 
   // The fitted garment is a garment folder like any other: it saves and passes every check of loading.
   const fs::path dir = freshDir("body_fit_tubes_folder");

@@ -17,8 +17,8 @@ int splitEdge(Garment& garment, int a, int b, double t);
 
 /// Makes the straight pattern-space segment from vertex `from` to vertex `to` (both in `layout`) a chain of mesh edges:
 /// walking from `from` through the layout's triangles, each edge the segment crosses is split where it crosses it, or,
-/// when the crossing lies within `snap` (a fraction of the edge) of an end, that vertex is taken instead (so no sliver
-/// triangles are made; the chain then bends by at most that much). Crossed seams, openings and cage lines get the new
+/// when an end of that edge lies within `snap` times the edge's length of the segment, that vertex is taken instead (so
+/// no sliver triangles are made; the chain then bends by at most that much, and walks on straight to `to`). Crossed seams, openings and cage lines get the new
 /// vertices. Returns the chain from `from` to `to`, consecutive vertices sharing a mesh edge. Throws `InputError`
 /// naming the vertices when the segment leaves the layout (a concave outline) or either end is not in the layout.
 std::vector<int> insertPatternLine(Garment& garment, int layout, int from, int to, double snap = 0.2);

@@ -60,8 +60,9 @@ void demoTShirtDataset(Report& report, const body::Body& body, const DemoOptions
 void demoReconstruction(Report& report, const body::Body& body);
 
 /// A T-shirt OBJ written as other cloth programs write theirs (tube sleeves, Z up, centimetres, another origin),
-/// imported without a cage file and taken through dressing, `demo.ownGarmentSamples` simulated samples, marker
-/// reconstruction, a fully connected PCA model, prediction and evaluation (own_garment/); needs demoBody's folder.
+/// imported without a cage file, fitted to the body (cage lines and patches), and taken through dressing,
+/// `demo.ownGarmentSamples` simulated samples, marker reconstruction, per-patch decoders, prediction and evaluation
+/// (own_garment/); needs demoBody's folder.
 void demoOwnGarment(Report& report, const body::Body& body, const DemoOptions& demo);
 
 /// A simulated necktie dataset of 6 samples, checked, with a contact sheet (dataset_necktie/).

@@ -15,6 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "pixelcloth/core/edge_key.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/geometry.h"
 #include "pixelcloth/core/mesh_index.h"
@@ -22,6 +23,8 @@
 namespace pixelcloth::cage {
 
 namespace {
+
+using core::edgeKey;
 
 /// Closest-point queries on the rest body: the point and the smooth (vertex-normal blended) normal there.
 class BodySurface {
@@ -49,11 +52,6 @@ class BodySurface {
   core::MeshIndex index_;
   Eigen::MatrixX3d normals_;
 };
-
-std::uint64_t edgeKey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
-}
 
 /// The garment's unique edges with their rest lengths in pattern space (per-corner UVs; a seam edge has one length
 /// per layout, equal up to the mesher's tolerance: the first face's is kept).

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <unordered_map>
 
+#include "pixelcloth/core/edge_key.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/mesh.h"
 
@@ -24,10 +25,6 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_triangle_primi
 
 Point toPoint(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
-std::uint64_t edgeKey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
-}
 }  // namespace
 
 /// What the inside test needs beyond the tree: the pseudo-normals of faces, edges and vertices (built on first use).

@@ -13,6 +13,7 @@
 
 #include "garment_checks.h"
 #include "garment_traits.h"
+#include "pixelcloth/core/edge_key.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/mesh_io.h"
@@ -25,6 +26,8 @@ using nlohmann::json;
 
 namespace {
 
+using core::edgeKey;
+
 /// Two UVs of one vertex in one layout closer than this (metres of pattern space) are the same UV.
 constexpr double kSameUvTolerance = 1e-9;
 /// A UV triangle whose height is below this fraction of its longest edge, or below kMinUvHeight, is degenerate.
@@ -32,11 +35,6 @@ constexpr double kMinUvAspect = 1e-6;
 constexpr double kMinUvHeight = 1e-7;
 
 const std::vector<std::string> kCageLineKinds = {"loop", "centre_line", "split"};
-
-std::uint64_t edgeKey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
-}
 
 /// "vertex 12 (OBJ vertex 13)": the 0-based index the JSON uses and the 1-based number of the OBJ's `v` line.
 std::string vertexName(int v) { return "vertex " + std::to_string(v) + " (OBJ vertex " + std::to_string(v + 1) + ")"; }

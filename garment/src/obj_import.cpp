@@ -24,6 +24,7 @@
 
 #include "garment_checks.h"
 #include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/edge_key.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/mesh_io.h"
 
@@ -32,6 +33,8 @@ namespace pixelcloth::garment {
 namespace fs = std::filesystem;
 
 namespace {
+
+using core::edgeKey;
 
 /// Two corners whose UVs are closer than this (UV units) are the same UV.
 constexpr double kSameUv = 1e-9;
@@ -47,11 +50,6 @@ constexpr double kLyingRatio = 1.5;
 /// A cut endpoint moves to a vertex where the neighbouring piece changes within this fraction of its boundary stretch.
 constexpr double kCutSnapFraction = 0.15;
 constexpr int kMaxCuts = 64;
-
-std::uint64_t edgeKey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
-}
 
 std::string number(double value, int digits = 3) {
   std::ostringstream out;

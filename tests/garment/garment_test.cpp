@@ -11,6 +11,7 @@
 #include <set>
 #include <unordered_set>
 
+#include "pixelcloth/core/edge_key.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/image.h"
 #include "pixelcloth/core/mesh.h"
@@ -28,10 +29,7 @@ const pg::Garment& tie() {
   return garment;
 }
 
-std::uint64_t edgeKey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
-}
+using pixelcloth::core::edgeKey;
 
 /// Undirected edges of the faces of one layout.
 std::unordered_set<std::uint64_t> layoutEdges(const pg::Garment& g, int layout) {

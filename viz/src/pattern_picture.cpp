@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <unordered_set>
 
+#include "pixelcloth/core/edge_key.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/pictures.h"
@@ -16,10 +17,7 @@ using garment::Garment;
 
 namespace {
 
-std::uint64_t edgeKey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
-}
+using core::edgeKey;
 
 /// Colour of the i-th seam: the categorical palette without its grey (too close to the triangle edges) and its two
 /// pale colours (invisible on the tinted panels), completed by darker blue, green and red.

@@ -25,7 +25,7 @@ struct SimulationOptions {
   int finalIterations = 50;
   /// A pose whose drape fails the acceptance test after `finalIterations` is not yet given up: it relaxes on at the
   /// target pose in rounds of `extraRound` iterations, tested after each, up to `extraIterations` more. At 50
-  /// iterations the shirt is still sliding up after the sleeves (docs/simulation.md, "Distance from equilibrium"),
+  /// iterations the shirt is still sliding up after the sleeves (docs/simulation.md, "Known limits"),
   /// and most failures are that unfinished slide stretching the armpit: of 864 sampled poses (nine seeds), 712 pass
   /// at 50 iterations and 808 with up to 150 more, for 8% more time a pose. A kept sample is always a later iterate
   /// of the same descent, never a restart; 0 turns this off.

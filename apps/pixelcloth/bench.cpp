@@ -205,7 +205,7 @@ void runBench(int repeats) {
   emit("garment.tshirt_build", medianSeconds(repeats, [] { makeTShirt(); }), "s", 1.0);
   emit("garment.necktie_build", medianSeconds(repeats, [] { makeNecktie(); }), "s", 0.2);
 
-  // Cage and patches (issue goals): rasterising a 512 x 512 image from the ~3K-vertex T-shirt, building all 28
+  // Cage and patches (the speed goals): rasterising a 512 x 512 image from the ~3K-vertex T-shirt, building all 28
   // patch bases, filling one patch (the slowest of the 28).
   Garment shirt = makeTShirt();
   patches::RasterOperator raster = patches::buildRaster(shirt, 0, patches::layoutFrame(shirt, 0, 512));
@@ -242,16 +242,16 @@ void runBench(int repeats) {
          "ms", 1.0);
   }
 
-  // Dressing (issue 4): the ~3K-vertex T-shirt on the ~14K-vertex mannequin, cages given.
+  // Dressing (DESIGN.md, "Dressing"): the ~3K-vertex T-shirt on the ~14K-vertex mannequin, cages given.
   const cage::Cage bodyCage = cage::bodyCage(body), shirtCage = cage::garmentCage(shirt);
   emit("cage.dress_tshirt", 1e3 * medianSeconds(repeats, [&] { cage::dressGarment(body, bodyCage, shirt, shirtCage); }),
        "ms", 2000.0);
 
-  // Simulation (issues 4 and 15): one sample of the T-shirt on one core, from the settled rest drape to a sampled
-  // pose, the mean over the same eight poses every run (accepted and rejected alike: a rejected pose costs its time
-  // too; a median of two, as before, moved by a third from run to run). Beside it, in the same run, the same poses
-  // with the iteration schedule from before issue 15 (20 per step, 150 at the target); issue 15's bar is half of
-  // what that schedule cost on the code of the day, its goal a third (docs/bench.md has both measured).
+  // Simulation (DESIGN.md, "Simulation"): one sample of the T-shirt on one core, from the settled rest drape to a
+  // sampled pose, the mean over the same eight poses every run (accepted and rejected alike: a rejected pose costs its
+  // time too; a median of two moved by a third from run to run). Beside it, in the same run, the same poses with the
+  // earlier iteration schedule (20 per step, 150 at the target): the goal is at most half of its time, the stretch a
+  // third (docs/bench.md has both measured).
   {
     const cage::Dressing dressing = cage::dressGarment(body, bodyCage, shirt, shirtCage);
     sim::GarmentSimulator simulator(body, shirt, dressing);

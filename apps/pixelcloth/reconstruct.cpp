@@ -1,4 +1,5 @@
-// pixelcloth markers / reconstruct: marker sets on the cage, and garments rebuilt from them (issue 5).
+// pixelcloth markers / reconstruct: marker sets on the cage, and garments rebuilt from them (DESIGN.md,
+// "Key-point-to-cage spline solver").
 #include "pixelcloth/recon/reconstruct.h"
 
 #include <cmath>

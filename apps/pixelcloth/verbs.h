@@ -24,7 +24,7 @@ void registerCage(CLI::App& app);
 void registerDress(CLI::App& app);
 void registerDataset(CLI::App& app);
 void registerGenerate(CLI::App& app);
-/// `markers` and `reconstruct` (issue 5).
+/// `markers` and `reconstruct` (DESIGN.md, "Key-point-to-cage spline solver").
 void registerReconstruct(CLI::App& app);
 /// `model` and `train` (learn/): a network's size; training an image decoder.
 void registerModel(CLI::App& app);

@@ -1,5 +1,5 @@
-// The learned worn length of cage curve segments (issue 5): the lines and their file. Fitting lives with the solver
-// (spline_solver.cpp), which knows how markers split each curve into segments.
+// The learned worn length of cage curve segments (DESIGN.md, "Key-point-to-cage spline solver"): the lines and their
+// file. Fitting lives with the solver (spline_solver.cpp), which knows how markers split each curve into segments.
 #include "pixelcloth/cage/length_model.h"
 
 #include <algorithm>

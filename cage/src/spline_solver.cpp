@@ -1,5 +1,5 @@
-// The length-preserving cage spline (issue 5): per-curve Ceres problems over the Hermite tangents, and the placement
-// of every cage vertex at its rest arc-length fraction.
+// The length-preserving cage spline (DESIGN.md, "Key-point-to-cage spline solver"): per-curve Ceres problems over the
+// Hermite tangents, and the placement of every cage vertex at its rest arc-length fraction.
 #include "pixelcloth/cage/spline_solver.h"
 
 #include <ceres/ceres.h>

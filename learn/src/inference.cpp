@@ -168,8 +168,8 @@ struct Step {
 /// A 4x4 stride-2 transposed convolution (padding 1) is four 2x2 convolutions, one per output parity (ry, rx):
 /// out[2m + ry][2n + rx] takes input rows m - 1, m (ry = 0) or m, m + 1 (ry = 1) with kernel rows kTaps[ry], and the
 /// same for columns. oneDNN's convolutions are faster than its transposed convolutions at every layer of the
-/// decoders (issue 13; most where channels are few and maps large): 28 patch decoders 135 -> 111 ms a frame at width
-/// 1, 91 -> 26 ms at width 0.25.
+/// decoders (DESIGN.md, "Inference"; most where channels are few and maps large): 28 patch decoders 135 -> 111 ms a
+/// frame at width 1, 91 -> 26 ms at width 0.25.
 constexpr int kTaps[2][2] = {{3, 1}, {2, 0}};
 
 /// Writes the four parity parts (each batch x blocks x height x width x block) into one map of twice the size in
@@ -366,7 +366,8 @@ const Program& CompiledNetworks::Impl::program(std::int64_t batch) {
       program.steps.push_back(weave);
       current = weave.dst;
     } else if (op.kind == Op::Kind::Deconvolution) {
-      // oneDNN's transposed convolution is 3.6x slower with a fused ReLU (issue 13): it gets a ReLU step of its own.
+      // oneDNN's transposed convolution is 3.6x slower with a fused ReLU (DESIGN.md, "Inference"): it gets a ReLU step
+      // of its own.
       dnnl::deconvolution_forward::primitive_desc pd(
           dnnl::deconvolution_forward::desc(dnnl::prop_kind::forward_inference, dnnl::algorithm::deconvolution_direct,
                                             src, weights, bias, dst, strides, padding, padding),

@@ -1,7 +1,7 @@
 #pragma once
 
 // Two of LibTorch's layers with the same parameters (names, shapes, initialisation, so checkpoints are unchanged),
-// computed the way LibTorch 1.13 is fast at on the CPU (learn/-internal; issue 13 measured both).
+// computed the way LibTorch 1.13 is fast at on the CPU (learn/-internal; both were measured).
 
 #include <torch/torch.h>
 

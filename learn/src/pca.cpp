@@ -1,6 +1,6 @@
 // Principal components of rows of data, three ways: the exact SVD (small problems, the reference), the Gram matrix
 // through sgemm and LAPACK's symmetric eigensolver, and a randomised range finder. The last two are what a 16K x 9K
-// training split needs (the PCA filter, issue 14); bench's stitch.pca_fit lines time both.
+// training split needs (the PCA filter, DESIGN.md "Stitching"); bench's stitch.pca_fit lines time both.
 #include <torch/torch.h>
 
 #include <algorithm>

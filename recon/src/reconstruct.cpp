@@ -1,5 +1,5 @@
-// Garments from sparse markers (issue 5): spline cage -> offsets -> procedural patch fill -> positions; and the
-// evaluation of every method on a dataset split.
+// Garments from sparse markers (DESIGN.md, "Key-point-to-cage spline solver"): spline cage -> offsets -> procedural
+// patch fill -> positions; and the evaluation of every method on a dataset split.
 #include "pixelcloth/recon/reconstruct.h"
 
 #include <algorithm>

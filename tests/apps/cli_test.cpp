@@ -1024,7 +1024,7 @@ namespace pixelcloth::apps {
 namespace {
 
 // ---------------------------------------------------------------------------------------------------------------------
-// markers and reconstruct (issue 5)
+// markers and reconstruct (DESIGN.md, "Key-point-to-cage spline solver")
 
 /// A necktie dataset imported from frames of the rest tie wrapped around horizontal cylinders of a few radii (an
 /// isometric bend: the pattern lengths stay true), on the shared body; reconstructed from its own markers.

@@ -10,7 +10,8 @@
 
 namespace pixelcloth::cage {
 
-/// Rest lengths of the cage curves, what the length-preserving spline must reproduce (issue 5, "Spline solver").
+/// Rest lengths of the cage curves, what the length-preserving spline must reproduce (DESIGN.md, "Key-point-to-cage
+/// spline solver").
 ///  - Pattern: lengths of the curve's mesh edges in pattern (UV) space: the cloth's true rest state, as the simulator
 ///    uses it (default).
 ///  - Polyline: lengths of the curve's mesh edges on a 3D rest garment (e.g. the dressed shirt).

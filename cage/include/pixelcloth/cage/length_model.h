@@ -9,8 +9,8 @@
 
 namespace pixelcloth::cage {
 
-/// How long a cage curve is between two markers on a worn garment, learned from worn garments (issue 5: the target of
-/// the spline's length term).
+/// How long a cage curve is between two markers on a worn garment, learned from worn garments (DESIGN.md,
+/// "Key-point-to-cage spline solver": the target of the spline's length term).
 ///
 /// Worn cloth does not keep its pattern length at the scale of the markers. Along a curve it stretches where it is
 /// pulled (5-15% near the armholes of the simulated T-shirts) and gathers into small wrinkles where it is pushed; a

@@ -39,7 +39,7 @@ struct MarkerSet {
                 bool requirePositions) const;
 };
 
-/// Where markers go (issue 5, "Markers").
+/// Where markers go (DESIGN.md, "Key-point-to-cage spline solver").
 struct MarkerOptions {
   /// Target spacing of the markers along each curve, metres of rest arc length: between two consecutive junctions on
   /// a curve that are d apart, round(d / spacing) - 1 evenly spaced markers (at least none), snapped to curve

@@ -1,8 +1,9 @@
 #pragma once
 
-// The residuals of the length-preserving cage spline (issue 5), as templated functors for ceres::AutoDiffCostFunction.
-// Deliberately free of Ceres includes: spline_solver.cpp wraps them, tests check them against numeric
-// differentiation. Any scalar type with +, -, *, / and an ADL-visible sqrt works (double, ceres::Jet).
+// The residuals of the length-preserving cage spline (DESIGN.md, "Key-point-to-cage spline solver"), as templated
+// functors for ceres::AutoDiffCostFunction. Deliberately free of Ceres includes: spline_solver.cpp wraps them, tests
+// check them against numeric differentiation. Any scalar type with +, -, *, / and an ADL-visible sqrt works (double,
+// ceres::Jet).
 //
 // A segment joins markers p0 and p1 whose rest arc length apart is L. Its shape is the cubic Hermite curve
 //   x(t) = h00(t) p0 + h10(t) L d0 + h01(t) p1 + h11(t) L d1,  t in [0, 1],

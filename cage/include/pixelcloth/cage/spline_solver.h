@@ -14,7 +14,7 @@
 
 namespace pixelcloth::cage {
 
-/// How a cage curve is drawn through its markers (issue 5):
+/// How a cage curve is drawn through its markers (DESIGN.md, "Key-point-to-cage spline solver"):
 ///  - Linear: straight segments between consecutive markers (baseline).
 ///  - CatmullRom: the Hermite spline whose tangent at each marker is the central difference over rest arc length,
 ///    (p[k+1] - p[k-1]) / (L[k-1] + L[k]) (a non-uniform Catmull-Rom with the rest lengths as knot spacing; at the ends

@@ -1,7 +1,7 @@
 #pragma once
 
-// Fast inference of trained networks on the CPU (issue 13): the networks of a model (the 28 patch decoders of a
-// frame, or one whole-garment, necktie or baseline network) compiled once into oneDNN primitives, like a
+// Fast inference of trained networks on the CPU (DESIGN.md, "Inference"): the networks of a model (the 28 patch
+// decoders of a frame, or one whole-garment, necktie or baseline network) compiled once into oneDNN primitives, like a
 // prefactored solver, then run on batches of frames. LibTorch's eval-mode forward stays the reference.
 
 #include <Eigen/Core>

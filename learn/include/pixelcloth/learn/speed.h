@@ -1,7 +1,7 @@
 #pragma once
 
-// What `pixelcloth bench` measures of learn/ (issue 13): the cores' sgemm peak, against which the decoders' speed is
-// judged, and a training step of a decoder.
+// What `pixelcloth bench` measures of learn/ (DESIGN.md, "Inference"): the cores' sgemm peak, against which the
+// decoders' speed is judged, and a training step of a decoder.
 
 #include "pixelcloth/learn/model.h"
 

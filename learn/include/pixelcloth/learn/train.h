@@ -1,8 +1,8 @@
 #pragma once
 
-// Training the paper's decoders and the baselines on a dataset (issue 12): cloth images or per-vertex values made on
-// the fly from each sample's offsets, the masked image loss with the optional normal and edge-length losses, Adam,
-// model selection on the regularisation split, and checkpoints a run resumes from.
+// Training the paper's decoders and the baselines on a dataset (DESIGN.md, "Networks"): cloth images or per-vertex
+// values made on the fly from each sample's offsets, the masked image loss with the optional normal and edge-length
+// losses, Adam, model selection on the regularisation split, and checkpoints a run resumes from.
 
 #include <cstdint>
 #include <filesystem>

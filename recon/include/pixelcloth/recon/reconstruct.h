@@ -23,8 +23,9 @@
 
 namespace pixelcloth::recon {
 
-/// The methods of issue 5's comparison: cage curves drawn linearly, by Catmull-Rom, or by the length-preserving
-/// spline, with patch interiors filled by isotropic harmonic bases; and the spline with anisotropic bases.
+/// The methods of the spline solver's comparison (DESIGN.md, "Key-point-to-cage spline solver"): cage curves drawn
+/// linearly, by Catmull-Rom, or by the length-preserving spline, with patch interiors filled by isotropic harmonic
+/// bases; and the spline with anisotropic bases.
 enum class ReconstructionMethod { Linear, CatmullRom, Spline, SplineAnisotropic };
 
 /// "linear", "catmull_rom", "spline", "spline_anisotropic".

@@ -10,7 +10,7 @@
 
 namespace pixelcloth::sim {
 
-/// Settings of `pixelcloth generate` (issue 4, "Datasets").
+/// Settings of `pixelcloth generate` (DESIGN.md, "Simulation").
 struct GenerateOptions {
   /// What --garment names: a template ("tshirt", "necktie") or a garment folder (garment::resolveGarment).
   std::string garment = "tshirt";

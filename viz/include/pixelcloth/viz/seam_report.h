@@ -1,8 +1,8 @@
 #pragma once
 
-// The seam report of one model (issue 14): every stitch mode's errors and seam figures as tables, the PCA filter's k
-// sweep as a plot, per-vertex error maps, a table per cage curve, and example garments with their worst seams
-// marked; report.md with its PNGs beside it.
+// The seam report of one model (DESIGN.md, "Stitching"): every stitch mode's errors and seam figures as tables, the PCA
+// filter's k sweep as a plot, per-vertex error maps, a table per cage curve, and example garments with their worst
+// seams marked; report.md with its PNGs beside it.
 
 #include <Eigen/Core>
 #include <filesystem>

@@ -207,18 +207,19 @@ class Fitter {
     const CageLine* chest = g_.findLine("chest");
     const garment::Opening* hem = findOpening(g_, "hem");
     if (!centre || !chest || !hem) return skip("side_panel_" + side, "it needs the chest loop, the centre line and the hem");
+    // Copies: adding lines below moves Garment::lines (the openings stay where they are, their chains kept current).
+    const std::vector<int> centreChain = centre->vertices;
+    std::vector<int> loop = chest->vertices;
     int layout = -1;
     for (int l = 0; l < g_.numLayouts(); ++l)
-      if (front_[l] == front && g_.vertexUV(centre->vertices.front(), l) >= 0 &&
-          g_.vertexUV(centre->vertices.back(), l) >= 0)
+      if (front_[l] == front && g_.vertexUV(centreChain.front(), l) >= 0 && g_.vertexUV(centreChain.back(), l) >= 0)
         layout = l;
-    const int centreVertex = meetingVertex(centre->vertices, chest->vertices);
+    const int centreVertex = meetingVertex(centreChain, loop);
     if (layout < 0 || centreVertex < 0) return skip("side_panel_" + side, "the centre line does not cross the chest loop");
-    const Eigen::Vector2d down = (uvOf(g_, centre->vertices.back(), layout) - uvOf(g_, centre->vertices.front(), layout))
-                                     .normalized();
+    const Eigen::Vector2d down =
+        (uvOf(g_, centreChain.back(), layout) - uvOf(g_, centreChain.front(), layout)).normalized();
     const double centreX = dressedOf(g_, centreVertex).x();
     // The chest loop's stretch in this layout, from the centre vertex outwards in both directions.
-    std::vector<int> loop = chest->vertices;
     const auto at = std::find(loop.begin(), loop.end(), centreVertex);
     std::rotate(loop.begin(), at, loop.end());
     for (int direction : {1, -1}) {
@@ -253,6 +254,17 @@ class Fitter {
         continue;
       }
       add(CageLine{name, "split", garment::insertPatternLine(g_, layout, start, *end, options_.snap), false});
+    }
+  }
+
+  /// Runs `place` (one line's placement); a line that cannot be cut (its straight pattern line leaves the layout) is
+  /// skipped with the reason instead of failing the whole fit. The splits it made on the way stay, as extra vertices.
+  template <typename Place>
+  void attempt(const std::string& name, Place place) {
+    try {
+      place();
+    } catch (const core::InputError& error) {
+      skip(name, error.what());
     }
   }
 
@@ -415,22 +427,26 @@ BodyFitReport fitGarmentToBody(Garment& garment, const body::Body& body, const B
     const cage::CageCurve* loop = bodyCage.findCurve(name);
     if (!loop) continue;
     const double height = meanBodyCoordinate(body, *loop, 1);
-    fitter.seamLoop(
-        name, "side_right", "side_left", [&](int v) { return dressedOf(garment, v).y() - height; },
-        std::string(name) == "chest");
+    fitter.attempt(name, [&] {
+      fitter.seamLoop(
+          name, "side_right", "side_left", [&](int v) { return dressedOf(garment, v).y() - height; },
+          std::string(name) == "chest");
+    });
   }
   for (const char* hand : {"left", "right"}) {
     const std::string name = std::string("bicep_") + hand;
     const cage::CageCurve* loop = bodyCage.findCurve(name);
     if (!loop) continue;
     const double x = meanBodyCoordinate(body, *loop, 0);
-    fitter.seamLoop(name, std::string("underarm_") + hand, std::string("sleeve_top_") + hand,
-                    [&](int v) { return dressedOf(garment, v).x() - x; });
+    fitter.attempt(name, [&] {
+      fitter.seamLoop(name, std::string("underarm_") + hand, std::string("sleeve_top_") + hand,
+                      [&](int v) { return dressedOf(garment, v).x() - x; });
+    });
   }
-  fitter.centreLine("centre_front", true);
-  fitter.centreLine("centre_back", false);
-  fitter.sidePanels(true);
-  fitter.sidePanels(false);
+  fitter.attempt("centre_front", [&] { fitter.centreLine("centre_front", true); });
+  fitter.attempt("centre_back", [&] { fitter.centreLine("centre_back", false); });
+  fitter.attempt("side_panel_front", [&] { fitter.sidePanels(true); });
+  fitter.attempt("side_panel_back", [&] { fitter.sidePanels(false); });
   fitter.splitLargePatches();
   garment.mesh.vertexAttributes.erase(kDressed);
   report.addedVertices = garment.mesh.numVertices() - verticesBefore;

@@ -48,8 +48,9 @@ struct BodyFitReport {
 ///  5. side-panel splits from the chest line straight down the pattern to the hem, on both sides of both centre lines;
 ///  6. any patch whose box is larger than patchPixels of its layout's image is split across its longer side.
 /// Lines are named as the template's (garment.h, CageLine), so dressing morphs them onto their body namesakes; a line
-/// whose seams or openings the garment lacks is skipped with the reason in the report. Throws `InputError` when the
-/// garment already has cage lines, or a line cannot be cut (the straight pattern line leaves its layout).
+/// whose seams or openings the garment lacks, or whose straight pattern line would leave its layout, is skipped with
+/// the reason in the report. Throws `InputError` when the garment already has cage lines, when dressing refuses it,
+/// or when a patch too large for its image cannot be split.
 BodyFitReport fitGarmentToBody(garment::Garment& garment, const body::Body& body, const BodyFitOptions& options = {});
 
 }  // namespace pixelcloth::patches

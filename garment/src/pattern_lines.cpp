@@ -3,11 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <set>
+#include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
+#include "pixelcloth/core/edge_key.h"
 #include "pixelcloth/core/error.h"
 
 namespace pixelcloth::garment {
@@ -194,6 +198,66 @@ std::vector<int> insertPatternLine(Garment& garment, int layout, int from, int t
     current = next;
   }
   return chain;
+}
+
+int flipThinTriangles(Garment& garment, double belowDegrees) {
+  core::Mesh& mesh = garment.mesh;
+  auto key = [](int a, int b) { return core::edgeKey(a, b); };
+  std::unordered_set<std::uint64_t> curveEdges;
+  auto addCurve = [&](const std::vector<int>& vertices, bool closed) {
+    for (size_t k = 0; k + 1 < vertices.size() + (closed ? 1 : 0); ++k)
+      curveEdges.insert(key(vertices[k], vertices[(k + 1) % vertices.size()]));
+  };
+  for (const Seam& seam : garment.seams) addCurve(seam.vertices, false);
+  for (const Opening& opening : garment.openings) addCurve(opening.vertices, true);
+  for (const CageLine& line : garment.lines) addCurve(line.vertices, line.closed);
+
+  auto uv = [&](int f, int k) -> Eigen::Vector2d { return mesh.UV.row(mesh.FUV(f, k)); };
+  auto angleAt = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
+    return std::atan2(std::abs(cross2(q - p, r - p)), (q - p).dot(r - p));
+  };
+  auto smallestAngle = [&](int f) {
+    double smallest = M_PI;
+    for (int k = 0; k < 3; ++k) smallest = std::min(smallest, angleAt(uv(f, k), uv(f, (k + 1) % 3), uv(f, (k + 2) % 3)));
+    return smallest;
+  };
+  const double thin = belowDegrees * M_PI / 180;
+  int flips = 0;
+  // Each pass visits every edge once; Lawson's flips end, and a few passes reach it.
+  for (int pass = 0; pass < 20; ++pass) {
+    std::unordered_map<std::uint64_t, std::vector<std::pair<int, int>>> edgeFaces;  // edge -> (face, corner of a)
+    for (int f = 0; f < mesh.numFaces(); ++f)
+      for (int k = 0; k < 3; ++k) edgeFaces[key(mesh.F(f, k), mesh.F(f, (k + 1) % 3))].push_back({f, k});
+    std::vector<bool> touched(mesh.numFaces(), false);
+    int passFlips = 0;
+    for (const auto& [edge, faces] : edgeFaces) {
+      if (faces.size() != 2 || curveEdges.count(edge)) continue;
+      const auto [f, i] = faces[0];
+      const auto [g, j] = faces[1];
+      if (garment.faceLayout[f] != garment.faceLayout[g] || touched[f] || touched[g]) continue;
+      if (std::min(smallestAngle(f), smallestAngle(g)) >= thin) continue;
+      // f = (a, b, c) from corner i, g = (b, a, d) from corner j: the quad a, d, b, c runs counter-clockwise.
+      const int a = mesh.F(f, i), b = mesh.F(f, (i + 1) % 3), c = mesh.F(f, (i + 2) % 3);
+      const int d = mesh.F(g, (j + 2) % 3);
+      if (mesh.F(g, j) != b || mesh.F(g, (j + 1) % 3) != a || edgeFaces.count(key(c, d))) continue;
+      const int ua = mesh.FUV(f, i), ub = mesh.FUV(f, (i + 1) % 3), uc = mesh.FUV(f, (i + 2) % 3),
+                ud = mesh.FUV(g, (j + 2) % 3);
+      const Eigen::Vector2d pa = mesh.UV.row(ua), pb = mesh.UV.row(ub), pc = mesh.UV.row(uc), pd = mesh.UV.row(ud);
+      if (angleAt(pc, pa, pb) + angleAt(pd, pb, pa) <= M_PI + 1e-9) continue;  // already Delaunay
+      // The new triangles (a, d, c) and (d, b, c) must keep the layout's orientation (the quad is convex).
+      if (cross2(pd - pa, pc - pa) <= 0 || cross2(pb - pd, pc - pd) <= 0) continue;
+      mesh.F.row(f) << a, d, c;
+      mesh.FUV.row(f) << ua, ud, uc;
+      mesh.F.row(g) << d, b, c;
+      mesh.FUV.row(g) << ud, ub, uc;
+      touched[f] = touched[g] = true;
+      ++passFlips;
+    }
+    flips += passFlips;
+    if (passFlips == 0) break;
+  }
+  if (flips > 0) garment.recipe = nullptr;
+  return flips;
 }
 
 }  // namespace pixelcloth::garment

@@ -395,7 +395,7 @@ std::string BodyFitReport::summary() const {
     for (size_t k = 0; k < lines.size(); ++k) out << (k ? ", " : "") << lines[k];
     out << ")";
   }
-  out << ", " << addedVertices << " vertices added; " << patches << " patches, the largest "
+  out << ", " << addedVertices << " vertices added, " << flippedEdges << " edges flipped; " << patches << " patches, the largest "
       << std::setprecision(0) << largestPatchPixels << " px";
   if (!skipped.empty()) {
     out << "; not placed: ";
@@ -448,6 +448,7 @@ BodyFitReport fitGarmentToBody(Garment& garment, const body::Body& body, const B
   fitter.attempt("side_panel_front", [&] { fitter.sidePanels(true); });
   fitter.attempt("side_panel_back", [&] { fitter.sidePanels(false); });
   fitter.splitLargePatches();
+  report.flippedEdges = garment::flipThinTriangles(garment);
   garment.mesh.vertexAttributes.erase(kDressed);
   report.addedVertices = garment.mesh.numVertices() - verticesBefore;
   return report;

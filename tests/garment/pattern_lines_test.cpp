@@ -127,6 +127,29 @@ TEST(PatternLines, ALineAcrossTheTieIsAChainOfMeshEdgesAndTheGarmentStaysValid) 
   EXPECT_EQ(loaded.findLine("tie_cut")->vertices, chain);
 }
 
+TEST(PatternLines, FlipsFattenThinTrianglesWithoutMovingAVertexOrCrossingACurve) {
+  pg::Garment g = necktie();
+  const Eigen::AlignedBox2d box = g.layoutBounds(0);
+  // A line nearly along the blade, so that it crosses many edges at shallow angles.
+  const int from = outlineVertexNear(g, {box.min().x(), box.min().y() + 0.3 * box.sizes().y()});
+  const int to = outlineVertexNear(g, {box.max().x(), box.min().y() + 0.7 * box.sizes().y()});
+  const std::vector<int> chain = pg::insertPatternLine(g, 0, from, to);
+  g.lines = {pg::CageLine{"cut", "split", chain, false}};
+  const double before = minAngleDegrees(g), area = totalUvArea(g);
+  const Eigen::MatrixX3d V = g.mesh.V;
+  const int flips = pg::flipThinTriangles(g);
+  EXPECT_GT(flips, 0);
+  EXPECT_GT(minAngleDegrees(g), before);
+  EXPECT_EQ(g.mesh.V, V);  // no vertex moved
+  EXPECT_NEAR(totalUvArea(g), area, 1e-12);
+  for (int f = 0; f < g.mesh.numFaces(); ++f) EXPECT_GT(uvArea(g, f), 0) << "face " << f;
+  for (size_t k = 0; k + 1 < chain.size(); ++k) EXPECT_TRUE(sharesEdge(g, chain[k], chain[k + 1])) << k;
+  // Still a valid garment: saved and read back through every check of the import.
+  const fs::path dir = freshDir("flipped");
+  pg::saveGarment(dir, g);
+  EXPECT_EQ(pg::loadGarment(dir).mesh.numFaces(), g.mesh.numFaces());
+}
+
 TEST(PatternLines, ALineThatLeavesItsLayoutOrAnEdgeThatIsNoneIsRefused) {
   pg::Garment g = pixelcloth::testing::tshirt();
   // From the far end of the left sleeve to the hem's left corner: the straight line passes outside the armpit.

@@ -23,4 +23,11 @@ int splitEdge(Garment& garment, int a, int b, double t);
 /// naming the vertices when the segment leaves the layout (a concave outline) or either end is not in the layout.
 std::vector<int> insertPatternLine(Garment& garment, int layout, int from, int to, double snap = 0.2);
 
+/// Flips edges of the garment's triangles towards a constrained Delaunay triangulation of each layout's pattern space
+/// (Lawson's flips): an edge inside one layout that runs along no seam, opening or cage line, whose two triangles
+/// include one with an angle under `belowDegrees`, is replaced by the other diagonal of their quad when the angles
+/// opposite it sum to more than 180 degrees. Vertices do not move, so rest shapes and positions stay; what inserting
+/// lines cut thin is made fat again, as far as the curves allow. Returns the number of flips.
+int flipThinTriangles(Garment& garment, double belowDegrees = 20);
+
 }  // namespace pixelcloth::garment

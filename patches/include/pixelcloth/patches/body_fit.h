@@ -31,10 +31,11 @@ struct BodyFitReport {
   std::vector<std::string> lines;                   ///< cage lines added, in order
   std::vector<std::string> skipped;                 ///< lines not placed, each with the reason
   int addedVertices = 0;
+  int flippedEdges = 0;  ///< edges flipped to fatten the triangles the cuts made thin (garment::flipThinTriangles)
   int patches = 0;
   double largestPatchPixels = 0;  ///< the largest patch box side at the end, pixels of an imageSize image
-  /// One line: "moved by (0.00, 0.02, -0.01) m; 10 cage lines (chest, waist, ...), 212 vertices added; 28 patches, the
-  /// largest 124 px of 512".
+  /// One line: "moved by (0.00, 0.02, -0.01) m; 10 cage lines (chest, waist, ...), 212 vertices added, 40 edges
+  /// flipped; 28 patches, the largest 124 px".
   std::string summary() const;
 };
 
@@ -46,7 +47,8 @@ struct BodyFitReport {
 ///     bicep loops likewise between the `underarm_*` and `sleeve_top_*` seams at the body's bicep loop;
 ///  4. centre lines from the neckline to the hem at the body's centre plane, in the front and the back layout;
 ///  5. side-panel splits from the chest line straight down the pattern to the hem, on both sides of both centre lines;
-///  6. any patch whose box is larger than patchPixels of its layout's image is split across its longer side.
+///  6. any patch whose box is larger than patchPixels of its layout's image is split across its longer side;
+///  7. thin triangles the cuts made are fattened by edge flips (garment::flipThinTriangles).
 /// Lines are named as the template's (garment.h, CageLine), so dressing morphs them onto their body namesakes; a line
 /// whose seams or openings the garment lacks, or whose straight pattern line would leave its layout, is skipped with
 /// the reason in the report. Throws `InputError` when the garment already has cage lines, when dressing refuses it,

@@ -34,6 +34,33 @@ void insertIntoChain(std::vector<int>& chain, bool closed, int a, int b, int n) 
 
 Eigen::Vector2d uvOf(const Garment& garment, int v, int layout) { return garment.mesh.UV.row(garment.vertexUV(v, layout)); }
 
+/// Every mesh edge a seam, opening or cage line runs along, by core::edgeKey.
+std::unordered_set<std::uint64_t> curveEdgeKeys(const Garment& garment) {
+  std::unordered_set<std::uint64_t> edges;
+  auto add = [&](const std::vector<int>& vertices, bool closed) {
+    for (size_t k = 0; k + 1 < vertices.size() + (closed ? 1 : 0); ++k)
+      edges.insert(core::edgeKey(vertices[k], vertices[(k + 1) % vertices.size()]));
+  };
+  for (const Seam& seam : garment.seams) add(seam.vertices, false);
+  for (const Opening& opening : garment.openings) add(opening.vertices, true);
+  for (const CageLine& line : garment.lines) add(line.vertices, line.closed);
+  return edges;
+}
+
+/// The angle at p of triangle (p, q, r), radians.
+double angleAt(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
+  return std::atan2(std::abs(cross2(q - p, r - p)), (q - p).dot(r - p));
+}
+
+/// The smallest angle of face f in pattern space, radians.
+double smallestAngle(const core::Mesh& mesh, int f) {
+  double smallest = M_PI;
+  for (int k = 0; k < 3; ++k)
+    smallest = std::min(smallest, angleAt(mesh.UV.row(mesh.FUV(f, k)), mesh.UV.row(mesh.FUV(f, (k + 1) % 3)),
+                                          mesh.UV.row(mesh.FUV(f, (k + 2) % 3))));
+  return smallest;
+}
+
 }  // namespace
 
 int splitEdge(Garment& garment, int a, int b, double t) {
@@ -122,15 +149,8 @@ std::vector<int> insertPatternLine(Garment& garment, int layout, int from, int t
   for (const auto& [edge, uses] : edgeUses)
     if (uses == 1) outline.insert({edge.first, edge.second});
   // Nor does it take a step along an edge of a seam, opening or cage line: it crosses other curves, never runs on them.
-  auto key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
-  std::set<std::pair<int, int>> curveEdges;
-  auto addCurve = [&](const std::vector<int>& vertices, bool closed) {
-    for (size_t k = 0; k + 1 < vertices.size() + (closed ? 1 : 0); ++k)
-      curveEdges.insert(key(vertices[k], vertices[(k + 1) % vertices.size()]));
-  };
-  for (const Seam& seam : garment.seams) addCurve(seam.vertices, false);
-  for (const Opening& opening : garment.openings) addCurve(opening.vertices, true);
-  for (const CageLine& line : garment.lines) addCurve(line.vertices, line.closed);
+  std::unordered_set<std::uint64_t> curveEdges = curveEdgeKeys(garment);
+  auto key = [](int a, int b) { return core::edgeKey(a, b); };
 
   std::vector<int> chain = {from};
   int current = from;
@@ -203,24 +223,7 @@ std::vector<int> insertPatternLine(Garment& garment, int layout, int from, int t
 int flipThinTriangles(Garment& garment, double belowDegrees) {
   core::Mesh& mesh = garment.mesh;
   auto key = [](int a, int b) { return core::edgeKey(a, b); };
-  std::unordered_set<std::uint64_t> curveEdges;
-  auto addCurve = [&](const std::vector<int>& vertices, bool closed) {
-    for (size_t k = 0; k + 1 < vertices.size() + (closed ? 1 : 0); ++k)
-      curveEdges.insert(key(vertices[k], vertices[(k + 1) % vertices.size()]));
-  };
-  for (const Seam& seam : garment.seams) addCurve(seam.vertices, false);
-  for (const Opening& opening : garment.openings) addCurve(opening.vertices, true);
-  for (const CageLine& line : garment.lines) addCurve(line.vertices, line.closed);
-
-  auto uv = [&](int f, int k) -> Eigen::Vector2d { return mesh.UV.row(mesh.FUV(f, k)); };
-  auto angleAt = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
-    return std::atan2(std::abs(cross2(q - p, r - p)), (q - p).dot(r - p));
-  };
-  auto smallestAngle = [&](int f) {
-    double smallest = M_PI;
-    for (int k = 0; k < 3; ++k) smallest = std::min(smallest, angleAt(uv(f, k), uv(f, (k + 1) % 3), uv(f, (k + 2) % 3)));
-    return smallest;
-  };
+  const std::unordered_set<std::uint64_t> curveEdges = curveEdgeKeys(garment);
   const double thin = belowDegrees * M_PI / 180;
   int flips = 0;
   // Each pass visits every edge once; Lawson's flips end, and a few passes reach it.
@@ -235,7 +238,7 @@ int flipThinTriangles(Garment& garment, double belowDegrees) {
       const auto [f, i] = faces[0];
       const auto [g, j] = faces[1];
       if (garment.faceLayout[f] != garment.faceLayout[g] || touched[f] || touched[g]) continue;
-      if (std::min(smallestAngle(f), smallestAngle(g)) >= thin) continue;
+      if (std::min(smallestAngle(mesh, f), smallestAngle(mesh, g)) >= thin) continue;
       // f = (a, b, c) from corner i, g = (b, a, d) from corner j: the quad a, d, b, c runs counter-clockwise.
       const int a = mesh.F(f, i), b = mesh.F(f, (i + 1) % 3), c = mesh.F(f, (i + 2) % 3);
       const int d = mesh.F(g, (j + 2) % 3);
@@ -258,6 +261,12 @@ int flipThinTriangles(Garment& garment, double belowDegrees) {
   }
   if (flips > 0) garment.recipe = nullptr;
   return flips;
+}
+
+double smallestPatternAngleDegrees(const Garment& garment) {
+  double smallest = M_PI;
+  for (int f = 0; f < garment.mesh.numFaces(); ++f) smallest = std::min(smallest, smallestAngle(garment.mesh, f));
+  return smallest * 180 / M_PI;
 }
 
 }  // namespace pixelcloth::garment

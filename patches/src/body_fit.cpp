@@ -395,7 +395,8 @@ std::string BodyFitReport::summary() const {
     for (size_t k = 0; k < lines.size(); ++k) out << (k ? ", " : "") << lines[k];
     out << ")";
   }
-  out << ", " << addedVertices << " vertices added, " << flippedEdges << " edges flipped; " << patches << " patches, the largest "
+  out << ", " << addedVertices << " vertices added, " << flippedEdges << " edges flipped, smallest angle "
+      << std::setprecision(1) << smallestAngleDegrees << " deg; " << patches << " patches, the largest "
       << std::setprecision(0) << largestPatchPixels << " px";
   if (!skipped.empty()) {
     out << "; not placed: ";
@@ -449,6 +450,7 @@ BodyFitReport fitGarmentToBody(Garment& garment, const body::Body& body, const B
   fitter.attempt("side_panel_back", [&] { fitter.sidePanels(false); });
   fitter.splitLargePatches();
   report.flippedEdges = garment::flipThinTriangles(garment);
+  report.smallestAngleDegrees = garment::smallestPatternAngleDegrees(garment);
   garment.mesh.vertexAttributes.erase(kDressed);
   report.addedVertices = garment.mesh.numVertices() - verticesBefore;
   return report;

@@ -48,19 +48,6 @@ bool sharesEdge(const pg::Garment& g, int a, int b) {
   return false;
 }
 
-/// The smallest triangle angle in pattern space, degrees.
-double minAngleDegrees(const pg::Garment& g) {
-  double smallest = 180;
-  for (int f = 0; f < g.mesh.numFaces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d p = g.mesh.UV.row(g.mesh.FUV(f, k)), q = g.mesh.UV.row(g.mesh.FUV(f, (k + 1) % 3)),
-                            r = g.mesh.UV.row(g.mesh.FUV(f, (k + 2) % 3));
-      const double cosine = (q - p).normalized().dot((r - p).normalized());
-      smallest = std::min(smallest, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180 / M_PI);
-    }
-  return smallest;
-}
-
 /// The outline vertex of layout 0 nearest `uv`.
 int outlineVertexNear(const pg::Garment& g, const Eigen::Vector2d& uv) {
   int best = -1;
@@ -98,7 +85,7 @@ TEST(PatternLines, ALineAcrossTheTieIsAChainOfMeshEdgesAndTheGarmentStaysValid) 
   const Eigen::AlignedBox2d box = g.layoutBounds(0);
   const double v = box.min().y() + 0.55 * box.sizes().y();
   const int from = outlineVertexNear(g, {box.min().x(), v}), to = outlineVertexNear(g, {box.max().x(), v});
-  const double area = totalUvArea(g), angleBefore = minAngleDegrees(g);
+  const double area = totalUvArea(g), angleBefore = pg::smallestPatternAngleDegrees(g);
   const std::vector<int> chain = pg::insertPatternLine(g, 0, from, to);
   ASSERT_GE(chain.size(), 3u);
   EXPECT_EQ(chain.front(), from);
@@ -113,7 +100,7 @@ TEST(PatternLines, ALineAcrossTheTieIsAChainOfMeshEdgesAndTheGarmentStaysValid) 
   EXPECT_NEAR(totalUvArea(g), area, 1e-12);
   for (int f = 0; f < g.mesh.numFaces(); ++f) EXPECT_GT(uvArea(g, f), 0) << "face " << f;
   // No sliver triangles: crossings near a vertex take the vertex.
-  EXPECT_GT(minAngleDegrees(g), std::min(angleBefore, 6.0));
+  EXPECT_GT(pg::smallestPatternAngleDegrees(g), std::min(angleBefore, 6.0));
 
   g.lines.push_back(pg::CageLine{"tie_cut", "split", chain, false});
   g.lines.erase(std::remove_if(g.lines.begin(), g.lines.end(),
@@ -135,11 +122,11 @@ TEST(PatternLines, FlipsFattenThinTrianglesWithoutMovingAVertexOrCrossingACurve)
   const int to = outlineVertexNear(g, {box.max().x(), box.min().y() + 0.7 * box.sizes().y()});
   const std::vector<int> chain = pg::insertPatternLine(g, 0, from, to);
   g.lines = {pg::CageLine{"cut", "split", chain, false}};
-  const double before = minAngleDegrees(g), area = totalUvArea(g);
+  const double before = pg::smallestPatternAngleDegrees(g), area = totalUvArea(g);
   const Eigen::MatrixX3d V = g.mesh.V;
   const int flips = pg::flipThinTriangles(g);
   EXPECT_GT(flips, 0);
-  EXPECT_GT(minAngleDegrees(g), before);
+  EXPECT_GT(pg::smallestPatternAngleDegrees(g), before);
   EXPECT_EQ(g.mesh.V, V);  // no vertex moved
   EXPECT_NEAR(totalUvArea(g), area, 1e-12);
   for (int f = 0; f < g.mesh.numFaces(); ++f) EXPECT_GT(uvArea(g, f), 0) << "face " << f;

@@ -17,6 +17,7 @@
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/garment/obj_import.h"
+#include "pixelcloth/garment/pattern_lines.h"
 #include "pixelcloth/patches/patch.h"
 #include "support/body_fixtures.h"
 #include "support/fixtures.h"
@@ -63,19 +64,6 @@ int sharedCurveEdges(const pg::Garment& g) {
   return shared;
 }
 
-/// The smallest triangle angle in pattern space, degrees.
-double minAngleDegrees(const pg::Garment& g) {
-  double smallest = 180;
-  for (int f = 0; f < g.mesh.numFaces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d p = g.mesh.UV.row(g.mesh.FUV(f, k)), q = g.mesh.UV.row(g.mesh.FUV(f, (k + 1) % 3)),
-                            r = g.mesh.UV.row(g.mesh.FUV(f, (k + 2) % 3));
-      const double cosine = (q - p).normalized().dot((r - p).normalized());
-      smallest = std::min(smallest, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180 / M_PI);
-    }
-  return smallest;
-}
-
 double largestPatch(const pg::Garment& g) {
   double largest = 0;
   for (const pp::Patch& patch : pp::garmentPatches(g))
@@ -106,7 +94,7 @@ TEST(BodyFit, TheTemplateExportedAsAPlainObjComesBackWithItsCageAndPatchCount) {
   EXPECT_EQ(sharedCurveEdges(g), 0);
   // The cuts leave no sliver: thin triangles are fattened by edge flips (the template's mesher keeps 20.7 degrees).
   EXPECT_GT(report.flippedEdges, 0);
-  EXPECT_GT(minAngleDegrees(g), 5.0);
+  EXPECT_GT(pg::smallestPatternAngleDegrees(g), 5.0);
   // Already where the template sits: the neckline alignment moves it by well under a centimetre.
   EXPECT_LT(report.moved.norm(), 0.01);
   // The lines lie where the template's do: the chest loop's mean height within 3 cm.
@@ -149,7 +137,7 @@ TEST(BodyFit, ATubeSleevedShirtAsUsersFilesComeSplitsIntoPatchesThatFitTheirImag
   EXPECT_EQ(report.patches, static_cast<int>(patches));
   EXPECT_LE(largestPatch(g), 128);
   EXPECT_EQ(sharedCurveEdges(g), 0);
-  EXPECT_GT(minAngleDegrees(g), 5.0);
+  EXPECT_GT(pg::smallestPatternAngleDegrees(g), 5.0);
   // It dresses on the body as the template does: its loops morphed onto the body's, the relaxation settles.
   const pixelcloth::cage::Dressing dressing = pixelcloth::cage::dressGarment(
       mannequin(), pixelcloth::cage::bodyCage(mannequin()), g, pixelcloth::cage::garmentCage(g));

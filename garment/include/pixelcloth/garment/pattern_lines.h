@@ -30,4 +30,7 @@ std::vector<int> insertPatternLine(Garment& garment, int layout, int from, int t
 /// lines cut thin is made fat again, as far as the curves allow. Returns the number of flips.
 int flipThinTriangles(Garment& garment, double belowDegrees = 20);
 
+/// The smallest angle of any triangle of the garment in pattern space, degrees (the template's mesher keeps 20.7).
+double smallestPatternAngleDegrees(const Garment& garment);
+
 }  // namespace pixelcloth::garment

@@ -32,10 +32,11 @@ struct BodyFitReport {
   std::vector<std::string> skipped;                 ///< lines not placed, each with the reason
   int addedVertices = 0;
   int flippedEdges = 0;  ///< edges flipped to fatten the triangles the cuts made thin (garment::flipThinTriangles)
+  double smallestAngleDegrees = 0;  ///< the smallest triangle angle in pattern space at the end
   int patches = 0;
   double largestPatchPixels = 0;  ///< the largest patch box side at the end, pixels of an imageSize image
   /// One line: "moved by (0.00, 0.02, -0.01) m; 10 cage lines (chest, waist, ...), 212 vertices added, 40 edges
-  /// flipped; 28 patches, the largest 124 px".
+  /// flipped, smallest angle 8.8 deg; 28 patches, the largest 124 px".
   std::string summary() const;
 };
 

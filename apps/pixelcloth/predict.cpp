@@ -10,6 +10,7 @@
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/learn/training_data.h"
@@ -77,7 +78,7 @@ void runPredict(const PredictArgs& args) {
     writeGarment(args.out, stem, inputs.data.garment, imager, predicted.positions[k], inputs.data.frames[rows[k]]);
     std::cout << (fs::path(args.out) / (stem + ".obj")).string();
     if (args.pose.empty())
-      std::cout << ": " << 100 * (predicted.positions[k] - inputs.data.truth[rows[k]].cast<double>()).rowwise().norm().mean()
+      std::cout << ": " << core::meanVertexErrorCm(predicted.positions[k], inputs.data.truth[rows[k]])
                 << " cm mean vertex error";
     std::cout << "\n";
   }

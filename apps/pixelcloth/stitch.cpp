@@ -1,6 +1,4 @@
 // pixelcloth stitch: a garment from 28 patch crops (EXR) that any patch networks predicted, by one stitch mode.
-#include "pixelcloth/stitch/stitcher.h"
-
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -10,6 +8,7 @@
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
+#include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/embedding.h"
@@ -17,6 +16,7 @@
 #include "pixelcloth/patches/cloth_image.h"
 #include "pixelcloth/stitch/evaluate.h"
 #include "pixelcloth/stitch/seams.h"
+#include "pixelcloth/stitch/stitcher.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
@@ -128,7 +128,7 @@ void runStitch(const StitchVerbArgs& args) {
                            {"pose", args.sample >= 0 ? "sample " + std::to_string(args.sample)
                                                      : args.pose.empty() ? std::string("rest") : args.pose},
                            {"seams", seamJson}};
-  if (truth.rows() == V) report["vertex_error_cm"] = 100 * (positions - truth).rowwise().norm().mean();
+  if (truth.rows() == V) report["vertex_error_cm"] = core::meanVertexErrorCm(positions, truth);
 
   core::ensureOutputFolder(args.out);
   const fs::path out(args.out);

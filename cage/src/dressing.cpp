@@ -18,6 +18,7 @@
 #include "pixelcloth/core/edge_key.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/geometry.h"
+#include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/mesh_index.h"
 
 namespace pixelcloth::cage {
@@ -303,15 +304,6 @@ Eigen::MatrixX3d harmonicDisplacement(const Eigen::MatrixX3d& V, const Eigen::Ma
   return displacement;
 }
 
-/// The q-quantile (q in [0, 1]) of `values`, linearly interpolated.
-double percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  const double position = q * (values.size() - 1);
-  const size_t lo = static_cast<size_t>(std::floor(position)), hi = std::min(lo + 1, values.size() - 1);
-  return values[lo] + (position - lo) * (values[hi] - values[lo]);
-}
-
 std::vector<double> log2Of(const Eigen::VectorXd& ratios) {
   std::vector<double> out;
   for (int i = 0; i < ratios.size(); ++i) out.push_back(std::log2(std::max(ratios[i], 1e-12)));
@@ -369,10 +361,7 @@ void DressingOptions::validate() const {
 namespace {
 double areaRatioQuantile(const Eigen::VectorXd& ratios, double q) {
   if (ratios.size() == 0) return 1.0;
-  std::vector<double> sorted(ratios.data(), ratios.data() + ratios.size());
-  const size_t k = static_cast<size_t>(q * static_cast<double>(sorted.size() - 1));
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k), sorted.end());
-  return sorted[k];
+  return core::quantile(std::vector<double>(ratios.data(), ratios.data() + ratios.size()), q);
 }
 }  // namespace
 
@@ -410,8 +399,8 @@ std::string Dressing::summary() const {
   s << std::setprecision(3) << cageVertices.size() << " cage vertices, " << pushedVertices << " pushed out (max "
     << 100 * maxPenetration << " cm deep), " << relaxIterations
     << (relaxConverged ? " sweeps" : " sweeps, stopped at the cap before settling") << " (residual " << relaxResidual
-    << " m), log2 area ratio 5-95% [" << percentile(before, 0.05) << ", " << percentile(before, 0.95) << "] -> ["
-    << percentile(after, 0.05) << ", " << percentile(after, 0.95) << "]";
+    << " m), log2 area ratio 5-95% [" << core::quantile(before, 0.05) << ", " << core::quantile(before, 0.95)
+    << "] -> [" << core::quantile(after, 0.05) << ", " << core::quantile(after, 0.95) << "]";
   return s.str();
 }
 

@@ -8,6 +8,7 @@
 
 #include "model_impl.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/measure.h"
 
 namespace pixelcloth::learn {
 
@@ -15,7 +16,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+using core::secondsSince;
 
 /// Sets LibTorch's threads for a scope and puts them back.
 class ThreadScope {

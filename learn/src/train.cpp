@@ -23,13 +23,14 @@
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/garment.h"
+#include "pixelcloth/learn/training_data.h"
 #include "pixelcloth/patches/patch.h"
 #include "target.h"
 #include "tensor.h"
-#include "pixelcloth/learn/training_data.h"
 
 namespace pixelcloth::learn {
 
@@ -38,7 +39,7 @@ namespace fs = std::filesystem;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+using core::secondsSince;
 
 /// One step's data: the inputs, the encoded targets and, for the geometric losses, the covered vertices' frames,
 /// base values and true positions.

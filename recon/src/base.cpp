@@ -15,6 +15,7 @@
 #include "dataset_internal.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/data/base_set.h"
 #include "pixelcloth/data/dataset.h"
@@ -98,7 +99,7 @@ BaseSetReport writeDatasetBases(const fs::path& datasetFolder, const fs::path& o
   const int rows = dataset.rows(), V = dataset.vertexCount(), M = static_cast<int>(definition.markers.size());
 
   Eigen::MatrixXf offsets(rows, 3 * V), features(rows, 3 * M);
-  std::vector<double> error(rows, 0), pushed(rows, 0);
+  std::vector<double> errorCm(rows, 0), pushed(rows, 0);
   auto rebuild = [&](int r) {
     const Eigen::MatrixX3d truth = dataset.positionsOf(r).cast<double>();
     const cage::MarkerSet markers =
@@ -109,7 +110,7 @@ BaseSetReport writeDatasetBases(const fs::path& datasetFolder, const fs::path& o
     const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> rowMajor = rec.offsets;
     offsets.row(r) = Eigen::Map<const Eigen::RowVectorXd>(rowMajor.data(), 3 * V).cast<float>();
     features.row(r) = markerFeatures(definition, markers, posed.frames()).transpose().cast<float>();
-    error[r] = (rec.positions - truth).rowwise().norm().mean();
+    errorCm[r] = core::meanVertexErrorCm(rec.positions, truth);
     pushed[r] = static_cast<double>(rec.pushedOut) / V;
   };
 
@@ -149,7 +150,7 @@ BaseSetReport writeDatasetBases(const fs::path& datasetFolder, const fs::path& o
   report.samples = rows;
   report.markers = M;
   for (int r = 0; r < rows; ++r) {
-    report.meanErrorCm += 100 * error[r] / rows;
+    report.meanErrorCm += errorCm[r] / rows;
     report.pushedOutPercent += 100 * pushed[r] / rows;
   }
   nlohmann::json names = nlohmann::json::array();

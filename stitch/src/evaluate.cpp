@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/patches/patch.h"
@@ -163,7 +164,7 @@ std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::
       for (int row : chunk) {
         const Eigen::MatrixX3d truth = data.truth[row].cast<double>();
         const Eigen::MatrixX3d base = learn::positionsFromValues(data.space, data.frames[row], data.base[row]);
-        baseError += 100 * (base - truth).rowwise().norm().mean();
+        baseError += core::meanVertexErrorCm(base, truth);
       }
     progress.advance(static_cast<std::int64_t>(chunk.size()));
   }

@@ -14,6 +14,7 @@
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/learn/weights_file.h"
 #include "pixelcloth/stitch/evaluate.h"
@@ -25,7 +26,7 @@ namespace fs = std::filesystem;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+using core::secondsSince;
 
 constexpr int kEvaluationChunk = 8;  ///< images through the generator at once when blending
 
@@ -35,7 +36,7 @@ nlohmann::json numberOrNull(double value) {
 
 /// Mean per-vertex distance (cm) between positions and the true ones.
 double vertexErrorCm(const Eigen::MatrixX3d& positions, const Eigen::MatrixXf& truth) {
-  return 100 * (positions - truth.cast<double>()).rowwise().norm().mean();
+  return core::meanVertexErrorCm(positions, truth);
 }
 
 /// The generator's blend of per-vertex values (each #V x 3), in eval mode without gradients.

@@ -6,6 +6,7 @@
 
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/image.h"
+#include "pixelcloth/core/measure.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/learn/predict.h"
 #include "pixelcloth/learn/train.h"
@@ -130,8 +131,7 @@ void demoLearning(Report& report, const body::Body& body, const DemoOptions& dem
         core::RgbImage picture = renderGarmentOnBody(g, &posed, 220);
         std::ostringstream label;
         label << std::fixed << std::setprecision(2) << m.name << " "
-              << 100 * (predicted.positions[k] - data.truth[shown[k]].cast<double>()).rowwise().norm().mean()
-              << " cm";
+              << core::meanVertexErrorCm(predicted.positions[k], data.truth[shown[k]]) << " cm";
         drawText(picture, {8, 8}, label.str(), {0, 0, 0}, 2);
         rows[k].push_back(picture);
       }

@@ -9,6 +9,7 @@
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/garment.h"
@@ -131,7 +132,7 @@ void demoOwnGarment(Report& report, const body::Body& body, const DemoOptions& d
       drawText(left, {8, 8}, "ground truth", {0, 0, 0}, 2);
       std::ostringstream label;
       label << std::fixed << std::setprecision(2) << "patches "
-            << 100 * (predicted.positions[k] - data.truth[shown[k]].cast<double>()).rowwise().norm().mean() << " cm";
+            << core::meanVertexErrorCm(predicted.positions[k], data.truth[shown[k]]) << " cm";
       drawText(right, {8, 8}, label.str(), {0, 0, 0}, 2);
       pictures.push_back(left);
       pictures.push_back(right);

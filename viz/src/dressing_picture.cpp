@@ -8,6 +8,7 @@
 
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/measure.h"
 #include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/render.h"
 
@@ -34,11 +35,6 @@ std::string fixed2(double x) {
   return text;
 }
 
-double quantile(std::vector<double> values, double q) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  return values[static_cast<size_t>(std::lround(q * (values.size() - 1)))];
-}
 }  // namespace
 
 core::RgbImage renderAreaDistortion(const garment::Garment& garment, const Dressing& dressing, int pixelsPerMetre) {
@@ -111,9 +107,9 @@ core::RgbImage renderAreaDistortion(const garment::Garment& garment, const Dress
     }
     const Eigen::Vector2i extent = viz::textExtent(titles[panel], 2 * textScale);
     viz::drawText(image, {x0 + (panelW - extent.x()) / 2, 2 * textScale}, titles[panel], {0, 0, 0}, 2 * textScale);
-    const std::string stats = "log2 area ratio 5-95 pct " + fixed2(quantile(logs, 0.05)) + " to " +
-                              fixed2(quantile(logs, 0.95)) + "   min " + fixed2(quantile(logs, 0)) + "   max " +
-                              fixed2(quantile(logs, 1));
+    const std::string stats = "log2 area ratio 5-95 pct " + fixed2(core::quantile(logs, 0.05)) + " to " +
+                              fixed2(core::quantile(logs, 0.95)) + "   min " + fixed2(core::quantile(logs, 0)) +
+                              "   max " + fixed2(core::quantile(logs, 1));
     const Eigen::Vector2i statsExtent = viz::textExtent(stats, textScale);
     viz::drawText(image, {x0 + (panelW - statsExtent.x()) / 2, 19 * textScale}, stats, {60, 60, 60}, textScale);
     for (int l = 0; l < numLayouts; ++l) {

@@ -10,6 +10,12 @@
 #include "pixelcloth/data/dataset.h"
 #include "verbs.h"
 
+namespace {
+pixelcloth::body::BeyondLimits beyondLimits = pixelcloth::body::BeyondLimits::Refuse;
+}  // namespace
+
+pixelcloth::body::BeyondLimits pixelcloth::apps::poseLimits() { return beyondLimits; }
+
 int main(int argc, char** argv) {
   CLI::App app{"pixelcloth: data-driven garments in pattern space (pixel-based cloth)", "pixelcloth"};
   app.require_subcommand(1);
@@ -26,7 +32,7 @@ int main(int argc, char** argv) {
   app.parse_complete_callback([&] {
     pixelcloth::core::setLogLevel(quiet ? pixelcloth::core::LogLevel::Warning : pixelcloth::core::LogLevel::Info);
     pixelcloth::data::setVerifyDatasetFiles(!noVerify);
-    pixelcloth::body::setClampPosesToLimits(clampToLimits);
+    beyondLimits = clampToLimits ? pixelcloth::body::BeyondLimits::Clamp : pixelcloth::body::BeyondLimits::Refuse;
   });
 
   pixelcloth::apps::registerBody(app);

@@ -32,7 +32,7 @@ void runPose(const PoseArgs& args) {
   Body body = loadBody(args.body);
   std::vector<Pose> poses;
   if (!args.pose.empty()) {
-    poses.push_back(readPose(args.pose));
+    poses.push_back(readPose(args.pose, poseLimits()));
   } else {
     sim::PoseSamplerOptions options;
     options.seed = args.seed;

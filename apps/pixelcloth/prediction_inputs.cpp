@@ -8,6 +8,7 @@
 #include "pixelcloth/cage/markers.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/recon/capture_base.h"
+#include "verbs.h"
 
 namespace pixelcloth::apps {
 
@@ -115,7 +116,7 @@ PredictionInputs posePredictionInputs(const fs::path& modelFolder, const fs::pat
   data.garment = data::datasetGarment(info);
   data.space = out.model->space();
   data.poseSize = out.model->poseSize();
-  const body::Pose pose = body::readPose(posePath);
+  const body::Pose pose = body::readPose(posePath, poseLimits());
   const Eigen::VectorXf vector = pose.toVector().head(data.poseSize);
   PIXELCLOTH_CHECK(pose.toVector().tail(body::kPoseSize - data.poseSize).isApprox(
                        body::Pose::fromLeading(vector).toVector().tail(body::kPoseSize - data.poseSize)) ||

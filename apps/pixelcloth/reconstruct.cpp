@@ -119,7 +119,7 @@ void runFromMarkers(const ReconstructArgs& args) {
                    "length_model.json a dataset run wrote, or none");
   if (!args.lengthModel.empty() && args.lengthModel != "none")
     options.lengthModel = cage::readLengthModel(args.lengthModel);
-  const body::Pose pose = body::readPose(args.pose);
+  const body::Pose pose = body::readPose(args.pose, poseLimits());
   const garment::Garment garment = markersGarment(args, markers);
   const cage::Cage cage = cage::garmentCage(garment);
   markers.validate(garment, cage, args.markers, true);

@@ -98,7 +98,7 @@ void runStitch(const StitchVerbArgs& args) {
     pose = body::Pose::fromLeading(dataset.pose(row));
     truth = dataset.positionsOf(row).cast<double>();
   } else if (!args.pose.empty()) {
-    pose = body::readPose(args.pose);
+    pose = body::readPose(args.pose, poseLimits());
   }
   const body::Body body = data::loadDatasetBody(args.dataset);
   const garment::Embedding embedding = data::loadDatasetEmbedding(args.dataset, body.mesh.F.rows());

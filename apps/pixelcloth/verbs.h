@@ -3,12 +3,18 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 
+#include "pixelcloth/body/pose_io.h"
+
 namespace pixelcloth::apps {
 
 /// Help of every --garment option: what garment::resolveGarment takes.
 inline constexpr const char* kGarmentHelp =
     "Garment: a template (tshirt or necktie) or a garment folder (garment.obj + garment.json, from "
     "`pixelcloth garment --out`, a template or --import)";
+
+/// What the program-wide --clamp-to-limits asks of every pose file a verb reads (body::readPose), set once the
+/// command line is parsed.
+body::BeyondLimits poseLimits();
 
 /// Each verb lives in its own file and adds one subcommand to the `pixelcloth` app. The callback
 /// runs the verb; it throws `core::InputError` for bad input (exit code 2).

@@ -1,7 +1,6 @@
 #include "pixelcloth/body/pose_io.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
 
 #include "pixelcloth/core/atomic_file.h"
@@ -62,17 +61,11 @@ Pose poseFromJson(const nlohmann::json& json, const std::string& context) {
   return Pose::fromVector(vector, context);
 }
 
-namespace {
-std::atomic<bool> clampToLimits{false};
-}  // namespace
-
-void setClampPosesToLimits(bool clamp) { clampToLimits = clamp; }
-
-Pose readPose(const std::filesystem::path& path) {
+Pose readPose(const std::filesystem::path& path, BeyondLimits beyondLimits) {
   const Pose pose = poseFromJson(readJson(path), path.string());
   const std::string beyond = pose.limitViolation();
   if (beyond.empty()) return pose;
-  PIXELCLOTH_CHECK(clampToLimits, path.string() << ": " << beyond << "; --clamp-to-limits clamps every angle into its "
+  PIXELCLOTH_CHECK(beyondLimits == BeyondLimits::Clamp, path.string() << ": " << beyond << "; --clamp-to-limits clamps every angle into its "
                                                                    "limits instead");
   PIXELCLOTH_WARN(path.string() << ": " << beyond << "; clamped into the limits (--clamp-to-limits)");
   return pose.clampedToLimits();

@@ -121,9 +121,7 @@ TEST(PoseJson, AnglesBeyondTheJointLimitsAreRefusedOrClamped) {
   pc::writeJson(dir / "twisted.json", {{"joints", {{"neck", {{"euler_deg", {0, 80, 0}}}}}}});
   expectError([&] { pb::readPose(dir / "twisted.json"); },
               {"twisted.json", "joint 'neck'", "y = 80", "beyond its limits -60 to 60", "--clamp-to-limits"});
-  pb::setClampPosesToLimits(true);
-  const pb::Pose clamped = pb::readPose(dir / "twisted.json");
-  pb::setClampPosesToLimits(false);
+  const pb::Pose clamped = pb::readPose(dir / "twisted.json", pb::BeyondLimits::Clamp);
   EXPECT_TRUE(clamped.withinLimits(1e-6));
   EXPECT_NEAR(clamped.toEulerDegrees()(3, 1), 60, 1e-6);
   // A pose at its limits exactly, as the sampler draws them, reads as it is.

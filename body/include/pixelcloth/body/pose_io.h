@@ -15,12 +15,9 @@ namespace pixelcloth::body {
 /// Joints left out stay at rest. Unknown joints, wrong counts, non-finite numbers and matrices that
 /// are not rotations are refused with the file and joint named.
 /// Joint angles beyond their limits (jointLimits(), Euler angles as Pose::toEulerDegrees gives them) are refused,
-/// the joint, angle and limit named, unless setClampPosesToLimits(true): then they are clamped with a warning.
-Pose readPose(const std::filesystem::path& path);
-
-/// What readPose does with angles beyond their joints' limits, for the process: refuse (false, the default) or
-/// clamp into them (true; the CLI's --clamp-to-limits).
-void setClampPosesToLimits(bool clamp);
+/// the joint, angle and limit named, or with BeyondLimits::Clamp (the CLI's --clamp-to-limits) clamped with a warning.
+enum class BeyondLimits { Refuse, Clamp };
+Pose readPose(const std::filesystem::path& path, BeyondLimits beyondLimits = BeyondLimits::Refuse);
 
 /// Parses the same forms from an already-read JSON value; `context` names its origin in messages.
 Pose poseFromJson(const nlohmann::json& json, const std::string& context);

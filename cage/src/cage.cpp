@@ -4,26 +4,10 @@
 #include <map>
 #include <set>
 
-#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 
 namespace pixelcloth::cage {
-
-namespace {
-const core::EnumNames<CurveKind, 5> kCurveKinds{"curve kind",
-                                                {{{CurveKind::Seam, "seam"},
-                                                  {CurveKind::Loop, "loop"},
-                                                  {CurveKind::CentreLine, "centre_line"},
-                                                  {CurveKind::Opening, "opening"},
-                                                  {CurveKind::Split, "split"}}}};
-}  // namespace
-
-const char* curveKindName(CurveKind kind) { return kCurveKinds.name(kind); }
-
-CurveKind curveKindFromName(const std::string& name, const std::string& context) {
-  return kCurveKinds.fromName(name, context);
-}
 
 const CageCurve* Cage::findCurve(const std::string& name) const {
   for (const CageCurve& c : curves)

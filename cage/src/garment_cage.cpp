@@ -9,10 +9,8 @@ Cage garmentCage(const garment::Garment& garment) {
     cage.curves.push_back({seam.name, CurveKind::Seam, false, seam.vertices});
   for (const garment::Opening& opening : garment.openings)
     cage.curves.push_back({opening.name, CurveKind::Opening, true, opening.vertices});
-  for (const garment::CageLine& line : garment.lines) {
-    const std::string where = garment.name + ": cage line '" + line.name + "'";
-    cage.curves.push_back({line.name, curveKindFromName(line.kind, where), line.closed, line.vertices});
-  }
+  for (const garment::CageLine& line : garment.lines)
+    cage.curves.push_back({line.name, line.kind, line.closed, line.vertices});
   cage.nodes = junctions(cage.curves);
   cage.validate(garment.mesh.F, garment.mesh.numVertices(), garment.name + " cage");
   return cage;

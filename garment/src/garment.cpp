@@ -19,9 +19,25 @@
 #include <unordered_set>
 
 #include "garment_pattern.h"
+#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
 
 namespace pixelcloth::garment {
+
+namespace {
+const core::EnumNames<CurveKind, 5> kCurveKinds{"curve kind",
+                                                {{{CurveKind::Seam, "seam"},
+                                                  {CurveKind::Loop, "loop"},
+                                                  {CurveKind::CentreLine, "centre_line"},
+                                                  {CurveKind::Opening, "opening"},
+                                                  {CurveKind::Split, "split"}}}};
+}  // namespace
+
+const char* curveKindName(CurveKind kind) { return kCurveKinds.name(kind); }
+
+CurveKind curveKindFromName(const std::string& name, const std::string& context) {
+  return kCurveKinds.fromName(name, context);
+}
 
 using namespace core;
 

@@ -34,7 +34,8 @@ constexpr double kSameUvTolerance = 1e-9;
 constexpr double kMinUvAspect = 1e-6;
 constexpr double kMinUvHeight = 1e-7;
 
-const std::vector<std::string> kCageLineKinds = {"loop", "centre_line", "split"};
+/// The kinds a cage line may have (the others are seams and openings, listed apart).
+const std::vector<CurveKind> kCageLineKinds = {CurveKind::Loop, CurveKind::CentreLine, CurveKind::Split};
 
 /// "vertex 12 (OBJ vertex 13)": the 0-based index the JSON uses and the 1-based number of the OBJ's `v` line.
 std::string vertexName(int v) { return "vertex " + std::to_string(v) + " (OBJ vertex " + std::to_string(v + 1) + ")"; }
@@ -385,10 +386,12 @@ class Importer {
       if (list[i].is_object() && list[i].contains("closed")) closed = core::requireValue<bool>(list[i], "closed", at);
       Polyline line = readPolyline(list[i], "cage_lines", i, "cage line", closed, names);
       const std::string kind = core::requireValue<std::string>(list[i], "kind", jsonFile_ + ": " + line.label);
-      PIXELCLOTH_CHECK(std::find(kCageLineKinds.begin(), kCageLineKinds.end(), kind) != kCageLineKinds.end(),
-                       jsonFile_ << ": " << line.label << ": field 'kind' is '" << kind
-                                 << "', expected one of: " << joined(kCageLineKinds));
-      garment_.lines.push_back(CageLine{line.name, kind, line.vertices, closed});
+      std::vector<std::string> kindNames;
+      for (CurveKind k : kCageLineKinds) kindNames.push_back(curveKindName(k));
+      const auto known = std::find(kindNames.begin(), kindNames.end(), kind);
+      PIXELCLOTH_CHECK(known != kindNames.end(), jsonFile_ << ": " << line.label << ": field 'kind' is '" << kind
+                                                           << "', expected one of: " << joined(kindNames));
+      garment_.lines.push_back(CageLine{line.name, kCageLineKinds[known - kindNames.begin()], line.vertices, closed});
       curves_.push_back(std::move(line));
     }
   }

@@ -88,7 +88,10 @@ nlohmann::json garmentJson(const Garment& garment) {
     openings.push_back({{"name", opening.name}, {"vertices", opening.vertices}});
   nlohmann::json lines = nlohmann::json::array();
   for (const CageLine& line : garment.lines)
-    lines.push_back({{"name", line.name}, {"kind", line.kind}, {"closed", line.closed}, {"vertices", line.vertices}});
+    lines.push_back({{"name", line.name},
+                     {"kind", curveKindName(line.kind)},
+                     {"closed", line.closed},
+                     {"vertices", line.vertices}});
   nlohmann::json layouts = nlohmann::json::array();
   for (int l = 0; l < garment.numLayouts(); ++l) {
     Eigen::AlignedBox2d box = garment.layoutBounds(l);

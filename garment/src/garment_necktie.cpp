@@ -108,7 +108,7 @@ Garment makeNecktie(const NecktieOptions& options) {
     throw std::logic_error("makeNecktie: the tie has " + std::to_string(loops.size()) + " boundaries");
   garment.openings.push_back(Opening{"outline", loops[0]});
   for (size_t b = 0; b < bandLines.size(); ++b)
-    garment.lines.push_back(CageLine{bandLines[b].name, "split", merged.chains[0][5 + b], false});
+    garment.lines.push_back(CageLine{bandLines[b].name, CurveKind::Split, merged.chains[0][5 + b], false});
   garment.traits = templateTraits("necktie");
   garment.traits.pinned = necktieKnotVertices(garment.mesh);
   garment.meshing = merged.stats;

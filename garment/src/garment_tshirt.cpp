@@ -355,15 +355,15 @@ Garment makeTShirt(const TShirtOptions& options) {
     if (front.front() != back.front() || front.back() != back.back())
       throw std::logic_error("makeTShirt: the " + name + " lines do not meet on the stitched seams");
     front.insert(front.end(), back.rbegin() + 1, back.rend() - 1);
-    return CageLine{name, "loop", front, true};
+    return CageLine{name, CurveKind::Loop, front, true};
   };
   for (const char* name : {"chest", "waist", "bicep_left", "bicep_right"}) garment.lines.push_back(loop(name));
-  garment.lines.push_back(CageLine{"centre_front", "centre_line", chain("centre_front", 0), false});
-  garment.lines.push_back(CageLine{"centre_back", "centre_line", chain("centre_back", 1), false});
+  garment.lines.push_back(CageLine{"centre_front", CurveKind::CentreLine, chain("centre_front", 0), false});
+  garment.lines.push_back(CageLine{"centre_back", CurveKind::CentreLine, chain("centre_back", 1), false});
   for (const char* side : {"front", "back"}) {
     for (const char* hand : {"left", "right"}) {
       const std::string name = std::string("side_panel_") + side + "_" + hand;
-      garment.lines.push_back(CageLine{name, "split", chain(name, side[0] == 'f' ? 0 : 1), false});
+      garment.lines.push_back(CageLine{name, CurveKind::Split, chain(name, side[0] == 'f' ? 0 : 1), false});
     }
   }
 

@@ -174,7 +174,7 @@ class Fitter {
     std::vector<int> loop = garment::insertPatternLine(g_, frontLayout, ends[0], ends[1], options_.snap);
     const std::vector<int> back = garment::insertPatternLine(g_, backLayout, ends[0], ends[1], options_.snap);
     loop.insert(loop.end(), back.rbegin() + 1, back.rend() - 1);
-    add(CageLine{name, "loop", loop, true});
+    add(CageLine{name, garment::CurveKind::Loop, loop, true});
   }
 
   /// The centre line of the front (or back) layout from the neckline to the hem at the body's centre plane.
@@ -194,7 +194,8 @@ class Fitter {
       if (!top) continue;
       const std::optional<int> bottom = loopCrossing(g_, hemLoop, layout, field, uvOf(g_, *top, layout), options_.snap);
       if (!bottom) continue;
-      add(CageLine{name, "centre_line", garment::insertPatternLine(g_, layout, *top, *bottom, options_.snap), false});
+      add(CageLine{name, garment::CurveKind::CentreLine,
+                   garment::insertPatternLine(g_, layout, *top, *bottom, options_.snap), false});
       return;
     }
     skip(name, std::string("no ") + (front ? "front" : "back") + " layout holds both the neckline and the hem");
@@ -253,7 +254,8 @@ class Fitter {
         skip(name, "no hem below the chest line");
         continue;
       }
-      add(CageLine{name, "split", garment::insertPatternLine(g_, layout, start, *end, options_.snap), false});
+      add(CageLine{name, garment::CurveKind::Split, garment::insertPatternLine(g_, layout, start, *end, options_.snap),
+                   false});
     }
   }
 
@@ -363,7 +365,8 @@ class Fitter {
     PIXELCLOTH_CHECK(from != to, g_.name << ": patch " << patch.id << " of layout " << g_.layouts[layout]
                                          << " is too narrow to split across its middle");
     const std::string name = "split_" + g_.layouts[layout] + "_" + std::to_string(++splits_);
-    add(CageLine{name, "split", garment::insertPatternLine(g_, layout, from, to, options_.snap), false});
+    add(CageLine{name, garment::CurveKind::Split, garment::insertPatternLine(g_, layout, from, to, options_.snap),
+                 false});
   }
 
   Garment& g_;

@@ -397,7 +397,7 @@ TEST(TShirt, CageLinesRunAlongMeshEdgesWhereTheyBelong) {
   for (const auto& line : g.lines) {
     const size_t n = line.vertices.size();
     ASSERT_GE(n, 3u) << line.name;
-    EXPECT_EQ(line.closed, line.kind == "loop") << line.name;
+    EXPECT_EQ(line.closed, line.kind == pg::CurveKind::Loop) << line.name;
     std::set<int> seen(line.vertices.begin(), line.vertices.end());
     EXPECT_EQ(seen.size(), n) << line.name << " repeats a vertex";
     for (size_t i = 0; i + (line.closed ? 0 : 1) < n; ++i) {

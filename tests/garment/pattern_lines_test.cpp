@@ -102,7 +102,7 @@ TEST(PatternLines, ALineAcrossTheTieIsAChainOfMeshEdgesAndTheGarmentStaysValid) 
   // No sliver triangles: crossings near a vertex take the vertex.
   EXPECT_GT(pg::smallestPatternAngleDegrees(g), std::min(angleBefore, 6.0));
 
-  g.lines.push_back(pg::CageLine{"tie_cut", "split", chain, false});
+  g.lines.push_back(pg::CageLine{"tie_cut", pg::CurveKind::Split, chain, false});
   g.lines.erase(std::remove_if(g.lines.begin(), g.lines.end(),
                                [](const pg::CageLine& line) { return line.name != "tie_cut"; }),
                 g.lines.end());
@@ -121,7 +121,7 @@ TEST(PatternLines, FlipsFattenThinTrianglesWithoutMovingAVertexOrCrossingACurve)
   const int from = outlineVertexNear(g, {box.min().x(), box.min().y() + 0.3 * box.sizes().y()});
   const int to = outlineVertexNear(g, {box.max().x(), box.min().y() + 0.7 * box.sizes().y()});
   const std::vector<int> chain = pg::insertPatternLine(g, 0, from, to);
-  g.lines = {pg::CageLine{"cut", "split", chain, false}};
+  g.lines = {pg::CageLine{"cut", pg::CurveKind::Split, chain, false}};
   const double before = pg::smallestPatternAngleDegrees(g), area = totalUvArea(g);
   const Eigen::MatrixX3d V = g.mesh.V;
   const int flips = pg::flipThinTriangles(g);

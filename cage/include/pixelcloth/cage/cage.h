@@ -6,16 +6,15 @@
 #include <string>
 #include <vector>
 
+#include "pixelcloth/garment/garment.h"
+
 namespace pixelcloth::cage {
 
-/// What a cage curve is (paper section 3): a sewn seam, a body loop (chest, waist, bicep), a centre
-/// line, a garment opening (hem, neckline, sleeve hem), or another line that splits patches.
-enum class CurveKind { Seam, Loop, CentreLine, Opening, Split };
-
-/// "seam", "loop", "centre_line", "opening", "split".
-const char* curveKindName(CurveKind kind);
-/// Inverse of curveKindName; throws InputError listing the names.
-CurveKind curveKindFromName(const std::string& name, const std::string& context);
+/// What a cage curve is, as garment.h defines it for the garment's cage lines (seam, loop, centre line, opening,
+/// split), with its names.
+using garment::CurveKind;
+using garment::curveKindFromName;
+using garment::curveKindName;
 
 /// One cage curve: an ordered chain of mesh vertices along mesh edges.
 struct CageCurve {

@@ -29,21 +29,31 @@ struct Opening {
   std::vector<int> vertices;
 };
 
+/// What a cage curve is (paper section 3): a sewn seam, a body loop (chest, waist, bicep), a centre line, a garment
+/// opening (hem, neckline, sleeve hem), or another line that splits patches. The garment's cage (cage/cage.h) and its
+/// cage lines (CageLine) share it.
+enum class CurveKind { Seam, Loop, CentreLine, Opening, Split };
+
+/// "seam", "loop", "centre_line", "opening", "split": how garment.json and cage.json spell the kinds.
+const char* curveKindName(CurveKind kind);
+/// Inverse of curveKindName; throws `InputError` prefixed with `context` listing the names.
+CurveKind curveKindFromName(const std::string& name, const std::string& context);
+
 /// A cage line that is neither a seam nor an opening (DESIGN.md, "Cage"): a body loop around the torso or a sleeve,
 /// a centre line, or a line that only splits a region too large for one patch. The pattern mesher inserts it as a
 /// constraint, so it runs along mesh edges: consecutive vertices (and last-first when closed) share a mesh edge.
 /// T-shirt lines:
-///  - "chest", "waist" (kind "loop", closed): horizontal lines across the front and the back torso, joined through the
+///  - "chest", "waist" (kind Loop, closed): horizontal lines across the front and the back torso, joined through the
 ///    side seams into one loop; "bicep_left", "bicep_right" (loop, closed): across both sleeve halves at mid-sleeve,
 ///    joined through the sleeve-top and underarm seams. Each loop runs from the wearer's right (or the underarm) along
 ///    the front, then back along the back layout.
-///  - "centre_front", "centre_back" (kind "centre_line", open): neckline to hem.
+///  - "centre_front", "centre_back" (kind CentreLine, open): neckline to hem.
 ///  - "side_panel_front_left", "side_panel_front_right", "side_panel_back_left", "side_panel_back_right" (kind
-///    "split", open): vertical lines from the chest line to the hem; left/right are the wearer's.
-/// Necktie lines: "tie_band_1" (lowest) ... (kind "split", open), across the blade from edge to edge.
+///    Split, open): vertical lines from the chest line to the hem; left/right are the wearer's.
+/// Necktie lines: "tie_band_1" (lowest) ... (kind Split, open), across the blade from edge to edge.
 struct CageLine {
   std::string name;
-  std::string kind;           ///< "loop" | "centre_line" | "split", as cage::curveKindName spells them
+  CurveKind kind = CurveKind::Split;  ///< Loop, CentreLine or Split
   std::vector<int> vertices;  ///< ordered chain of mesh vertex indices
   bool closed = false;        ///< continues from the last vertex back to the first
 };

@@ -37,13 +37,17 @@ Eigen::Vector3d dressedOf(const Garment& g, int v) { return g.mesh.vertexAttribu
 Eigen::Vector2d uvOf(const Garment& g, int v, int layout) { return g.mesh.UV.row(g.vertexUV(v, layout)).transpose(); }
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-/// The vertex where `field` crosses zero on the edge (a, b) (field values fa, fb of opposite signs): a itself or b
-/// itself within `snap` of them, else a new vertex splitting the edge.
-int vertexAtCrossing(Garment& g, int a, int b, double fa, double fb, double snap) {
-  const double t = fa == fb ? 0.0 : fa / (fa - fb);
+/// The vertex at a + t (b - a) on the edge (a, b): a itself or b itself within `snap` of them, else a new vertex
+/// splitting the edge.
+int vertexAtFraction(Garment& g, int a, int b, double t, double snap) {
   if (t <= snap) return a;
   if (t >= 1 - snap) return b;
   return garment::splitEdge(g, a, b, t);
+}
+
+/// The vertex where `field` crosses zero on the edge (a, b) (field values fa, fb of opposite signs).
+int vertexAtCrossing(Garment& g, int a, int b, double fa, double fb, double snap) {
+  return vertexAtFraction(g, a, b, fa == fb ? 0.0 : fa / (fa - fb), snap);
 }
 
 bool crosses(double fa, double fb) { return (fa <= 0 && fb > 0) || (fa > 0 && fb <= 0); }
@@ -67,9 +71,7 @@ std::optional<ChainPoint> chainCrossing(const std::vector<int>& chain, Field fie
 
 /// The vertex at a chain point: an end of its edge within `snap`, else a new vertex splitting the edge.
 int vertexAt(Garment& g, const std::vector<int>& chain, const ChainPoint& point, double snap) {
-  if (point.t <= snap) return chain[point.i];
-  if (point.t >= 1 - snap) return chain[point.i + 1];
-  return garment::splitEdge(g, chain[point.i], chain[point.i + 1], point.t);
+  return vertexAtFraction(g, chain[point.i], chain[point.i + 1], point.t, snap);
 }
 
 /// The layout of the face along boundary edge (a, b), or -1.

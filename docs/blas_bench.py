@@ -4,10 +4,10 @@
 Which libblas.so.3 is used is decided by the dynamic loader (update-alternatives
 or LD_LIBRARY_PATH), so run this script once per BLAS, e.g.
 
-  /usr/bin/python3 bench.py --threads 2                        # system default
-  LD_LIBRARY_PATH=/usr/lib/x86_64-linux-gnu/blas /usr/bin/python3 bench.py --threads 1
+  /usr/bin/python3 docs/blas_bench.py --threads 2                        # system default
+  LD_LIBRARY_PATH=/usr/lib/x86_64-linux-gnu/blas /usr/bin/python3 docs/blas_bench.py --threads 1
   LD_LIBRARY_PATH=/tmp/blas-variants/openmp/usr/lib/x86_64-linux-gnu/openblas-openmp \
-      OPENBLAS_NUM_THREADS=1 /usr/bin/python3 bench.py --threads 2
+      OPENBLAS_NUM_THREADS=1 /usr/bin/python3 docs/blas_bench.py --threads 2
 
 It prints one JSON line: the BLAS/LAPACK/OpenMP libraries actually mapped into
 the process (from /proc/self/maps), the environment, and the median wall time

@@ -80,12 +80,10 @@ void runImport(const DatasetArgs& args) {
   nlohmann::json bodyDescription;
   if (!args.dressing.empty()) {
     const std::filesystem::path dressingFolder(args.dressing);
-    body = data::loadDatasetBody(dressingFolder);
-    rest = data::loadDatasetRestPositions(dressingFolder, garment.mesh.numVertices());
-    embedding = data::loadDatasetEmbedding(dressingFolder, body.mesh.numFaces());
-    PIXELCLOTH_CHECK(embedding.size() == garment.mesh.numVertices(),
-                     args.dressing << "/embedding_triangle.npy: " << embedding.size() << " cloth pixels, the "
-                                   << garment.name << " has " << garment.mesh.numVertices());
+    data::DressingFiles dressed = data::loadDressingFiles(dressingFolder, garment);
+    body = std::move(dressed.body);
+    rest = std::move(dressed.rest);
+    embedding = std::move(dressed.embedding);
     bodyDescription = {{"kind", "folder"}, {"path", (dressingFolder / "body").string()}};
   } else {
     // Dress the garment here, on the given body folder or the built-in mannequin.

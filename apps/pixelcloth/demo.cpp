@@ -50,7 +50,7 @@ void registerDemo(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1, 200));
   verb->add_option("--filter-poses", args->options.filterPoses,
-                   "Poses drawn and simulated on the T-shirt for the filtering histograms (the issue asks for 200)")
+                   "Poses drawn and simulated on the T-shirt for the filtering histograms")
       ->capture_default_str()
       ->check(CLI::Range(2, 2000));
   verb->add_option("--tshirt-samples", args->options.tshirtSamples,

@@ -28,8 +28,8 @@ struct EvaluateArgs {
 
 /// report.md and its pictures: the examples are the split's first sample as the first mode and the best pca:K mode
 /// (or the second mode) stitch it.
-void writeReport(const EvaluateArgs& args, const PredictionInputs& inputs, const std::vector<stitch::Stitcher>& stitchers,
-                 const std::vector<stitch::Evaluation>& evaluations) {
+void writeReport(const EvaluateArgs& args, const learn::PredictionInputs& inputs,
+                 const std::vector<stitch::Stitcher>& stitchers, const std::vector<stitch::Evaluation>& evaluations) {
   const learn::TrainingData& data = inputs.data;
   viz::SeamReportInputs report;
   std::ostringstream title, command;
@@ -40,8 +40,8 @@ void writeReport(const EvaluateArgs& args, const PredictionInputs& inputs, const
   report.command = command.str();
   report.garment = data.garment;
   report.evaluations = evaluations;
-  const int row = data.split(args.split).front();
-  const int best = viz::bestPcaMode(evaluations);
+  const int row = data.split(data::splitFromName(args.split, "evaluate --split")).front();
+  const int best = stitch::bestPcaMode(evaluations);
   std::vector<size_t> shown = {0};
   if (best > 0) shown.push_back(static_cast<size_t>(best));
   else if (stitchers.size() > 1) shown.push_back(1);
@@ -59,12 +59,13 @@ void writeReport(const EvaluateArgs& args, const PredictionInputs& inputs, const
 
 void runEvaluate(const EvaluateArgs& args) {
   core::checkOutputFolder(args.out);
-  const PredictionInputs inputs = datasetPredictionInputs(args.model, args.dataset, args.base,
-                                                           learn::engineFromName(args.engine, "--engine"));
+  const learn::PredictionInputs inputs = learn::datasetPredictionInputs(args.model, args.dataset, args.base,
+                                                                        learn::engineFromName(args.engine, "--engine"));
   const std::vector<stitch::Stitcher> stitchers = makeStitchers(args.stitch, inputs);
   std::vector<const stitch::Stitcher*> modes;
   for (const stitch::Stitcher& s : stitchers) modes.push_back(&s);
-  const std::vector<stitch::Evaluation> evaluations = stitch::evaluate(*inputs.model, inputs.data, args.split, modes);
+  const std::vector<stitch::Evaluation> evaluations =
+      stitch::evaluate(*inputs.model, inputs.data, data::splitFromName(args.split, "evaluate --split"), modes);
   const stitch::Evaluation& evaluation = evaluations.front();
   nlohmann::json metrics = evaluation.metrics;
   if (evaluations.size() > 1) {

@@ -11,11 +11,12 @@ namespace pixelcloth::apps {
 namespace {
 struct GenerateArgs {
   sim::GenerateOptions options;
+  bool quiet = false;
   std::string out;
 };
 
 void runGenerate(GenerateArgs args) {
-  if (args.options.quiet) core::setLogLevel(core::LogLevel::Warning);
+  if (args.quiet) core::setLogLevel(core::LogLevel::Warning);
   const sim::GenerateReport report = sim::generateDataset(args.out, args.options);
   PIXELCLOTH_INFO("generate: " << report.added << " samples simulated (" << report.resumed << " already done, "
                                << report.rejected << " simulations rejected) in " << report.seconds << " s -> "
@@ -43,7 +44,7 @@ void registerGenerate(CLI::App& app) {
   verb->add_option("--corrupt-fraction", o.corruptFraction, "Fraction of upper-arm weight moved")
       ->capture_default_str();
   verb->add_option("--threads", o.threads, "Worker threads (0: one per core)")->capture_default_str();
-  verb->add_flag("--quiet", o.quiet, "No progress on stderr");
+  verb->add_flag("--quiet", args->quiet, "No progress on stderr");
   verb->callback([args] { runGenerate(*args); });
 }
 

@@ -9,7 +9,7 @@
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/cloth_image.h"
-#include "pixelcloth/patches/patch.h"
+#include "pixelcloth/patches/crop_files.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
@@ -30,28 +30,6 @@ struct ImagesArgs {
   bool crops = false;
 };
 
-/// crops_NNNNNN/patch_NN.exr: each patch's enlarged 160 x 160 crop of `offsets` (#V x 3), channels du dv dn mask, the
-/// images a patch decoder predicts and `pixelcloth stitch` reads.
-void writeCrops(const std::filesystem::path& folder, const std::vector<patches::EnlargedCrop>& crops,
-                const Eigen::MatrixXf& offsets) {
-  for (size_t id = 0; id < crops.size(); ++id) {
-    const patches::EnlargedCrop& crop = crops[id];
-    const Eigen::MatrixXf pixels = crop.raster.apply(offsets);
-    patches::ClothImage image;
-    image.width = crop.frame.width;
-    image.height = crop.frame.height;
-    patches::ClothLayer layer;
-    layer.du = patches::toImage(pixels.col(0), image.width, image.height);
-    layer.dv = patches::toImage(pixels.col(1), image.width, image.height);
-    layer.dn = patches::toImage(pixels.col(2), image.width, image.height);
-    layer.mask = crop.raster.maskImage();
-    image.layers.push_back(std::move(layer));
-    char name[32];
-    std::snprintf(name, sizeof(name), "patch_%02zu.exr", id);
-    patches::writeClothImage(folder / name, image);
-  }
-}
-
 /// Cloth images of dataset samples: cloth_NNNNNN.exr and .png per sample index.
 void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& options) {
   using namespace pixelcloth::core;
@@ -69,16 +47,12 @@ void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& 
   std::vector<int> indices = args.samples;
   if (args.all)
     for (int row = 0; row < dataset.rows(); ++row) indices.push_back(settings.first() + row);
-  for (int index : indices)
-    PIXELCLOTH_CHECK(index >= settings.first() && index < settings.end(),
-                     "images: --samples " << index << ": " << args.dataset << " holds samples " << settings.first()
-                                          << " to " << settings.end() - 1);
+  for (int index : indices) dataset.info.rowOfSample(index, "images: --samples");
   const Garment garment = data::datasetGarment(dataset.info);
   const patches::ClothImager imager(garment, options);
   const std::filesystem::path folder(args.out);
   std::vector<patches::EnlargedCrop> crops;
-  if (args.crops)
-    for (const patches::Patch& patch : patches::garmentPatches(garment)) crops.push_back(patches::enlargedCrop(garment, patch));
+  if (args.crops) crops = patches::garmentCrops(garment);
   Progress progress("images", static_cast<std::int64_t>(indices.size()));
   for (int index : indices) {
     char name[32];
@@ -88,7 +62,7 @@ void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& 
     writePng(folder / (std::string(name) + ".png"), viz::renderClothImage(image));
     if (args.crops) {
       std::snprintf(name, sizeof(name), "crops_%06d", index);
-      writeCrops(folder / name, crops, dataset.offsetsOf(index - settings.first()));
+      patches::writePatchCrops(folder / name, crops, dataset.offsetsOf(index - settings.first()));
     }
     progress.advance();
   }

@@ -51,16 +51,12 @@ void runPredict(const PredictArgs& args) {
                    "predict: --markers goes with --pose (dataset samples take their markers from the base folder)");
   core::checkOutputFolder(args.out);
   const learn::Engine engine = learn::engineFromName(args.engine, "--engine");
-  const PredictionInputs inputs = args.pose.empty()
-                                      ? datasetPredictionInputs(args.model, args.dataset, args.base, engine)
-                                      : posePredictionInputs(args.model, args.pose, args.markers, args.dataset, engine);
+  const learn::PredictionInputs inputs =
+      args.pose.empty() ? learn::datasetPredictionInputs(args.model, args.dataset, args.base, engine)
+                        : posePredictionInputs(args.model, args.pose, args.markers, args.dataset, engine);
   std::vector<int> rows;
   for (int sample : args.samples) {
-    const int row = sample - inputs.data.info.settings.first();
-    PIXELCLOTH_CHECK(row >= 0 && row < inputs.data.rows(),
-                     "predict --samples " << sample << ": " << inputs.data.folder.string() << " holds samples "
-                                          << inputs.data.info.settings.first() << " to "
-                                          << inputs.data.info.settings.end() - 1);
+    const int row = inputs.data.info.rowOfSample(sample, "predict --samples");
     rows.push_back(row);
   }
   if (rows.empty()) rows.push_back(0);  // the pose form: one row

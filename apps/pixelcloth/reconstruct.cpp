@@ -18,7 +18,6 @@
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
-#include "pixelcloth/core/npy.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/recon/base.h"
 #include "pixelcloth/viz/pictures.h"
@@ -55,10 +54,7 @@ void runMarkers(const MarkersArgs& args) {
     return;
   }
   const data::Dataset dataset = data::openDataset(args.dataset);
-  const int row = args.sample - dataset.info.settings.first();
-  PIXELCLOTH_CHECK(row >= 0 && row < dataset.rows(),
-                   "markers --sample " << args.sample << ": " << args.dataset << " holds samples "
-                                       << dataset.info.settings.first() << " to " << dataset.info.settings.end() - 1);
+  const int row = dataset.info.rowOfSample(args.sample, "markers --sample");
   const garment::Garment garment = data::datasetGarment(dataset.info);
   const cage::MarkerSet definition = cage::defineMarkers(garment, cage::garmentCage(garment), options);
   const cage::MarkerSet markers = cage::placeMarkers(definition, dataset.positionsOf(row).cast<double>(), capture);
@@ -127,19 +123,10 @@ void runFromMarkers(const ReconstructArgs& args) {
   Eigen::MatrixX3d rest;
   garment::Embedding embedding;
   if (!args.dressing.empty()) {
-    body = data::loadDatasetBody(args.dressing);
-    const std::filesystem::path restFile = std::filesystem::path(args.dressing) / "rest_positions.npy";
-    const core::NpyHeader restHeader = core::readNpyHeader(restFile);
-    PIXELCLOTH_CHECK(!restHeader.shape.empty() && restHeader.shape[0] == garment.mesh.numVertices(),
-                     restFile.string() << ": shape " << restHeader.shapeString() << ": the dressing is of a garment of "
-                                       << (restHeader.shape.empty() ? 0 : restHeader.shape[0]) << " vertices, the markers ("
-                                       << args.markers << ") are of the " << garment.name << " ("
-                                       << garment.mesh.numVertices() << " vertices): the garments differ");
-    rest = data::loadDatasetRestPositions(args.dressing, garment.mesh.numVertices());
-    embedding = data::loadDatasetEmbedding(args.dressing, body.mesh.numFaces());
-    PIXELCLOTH_CHECK(embedding.size() == garment.mesh.numVertices(),
-                     args.dressing << "/embedding_triangle.npy: " << embedding.size() << " cloth pixels, the "
-                                   << garment.name << " has " << garment.mesh.numVertices());
+    data::DressingFiles dressed = data::loadDressingFiles(args.dressing, garment, "the markers (" + args.markers + ")");
+    body = std::move(dressed.body);
+    rest = std::move(dressed.rest);
+    embedding = std::move(dressed.embedding);
   } else {
     body = args.body.empty() ? body::makeMannequin() : body::loadBody(args.body);
     const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), garment, cage);
@@ -154,6 +141,13 @@ void runFromMarkers(const ReconstructArgs& args) {
   core::writeMesh(args.out, mesh);
   PIXELCLOTH_INFO("reconstruct: " << garment.name << " from " << markers.markers.size() << " markers (" << args.method
                                   << "; " << result.spline.summary() << ") -> " << args.out);
+}
+
+/// --length-model of the dataset forms: fit (also when not given), none, or a length model file.
+recon::LengthModelSource lengthModelSource(const std::string& text) {
+  if (text.empty() || text == "fit") return recon::LengthModelSource::fit();
+  if (text == "none") return recon::LengthModelSource::none();
+  return recon::LengthModelSource::fromFile(text);
 }
 
 /// The reconstruction options of the dataset forms (evaluation and bases).
@@ -177,13 +171,15 @@ void runFromDataset(const ReconstructArgs& args) {
                    "reconstruct --dataset needs --out (the folder for metrics and meshes), or "
                    "--write-base (a base folder for the learned refinement)");
   recon::DatasetReconstructionOptions options;
-  options.split = args.split;
+  if (args.split == "all")
+    options.split.reset();
+  else
+    options.split = data::splitFromName(args.split, "reconstruct --split");
   options.markers.spacing = args.spacing;
   options.capture = {args.noiseCm / 100, args.dropout, args.seed};
   options.reconstruction = datasetReconstructionOptions(args);
-  options.lengthModel = args.lengthModel.empty() ? "fit" : args.lengthModel;
+  options.lengthModel = lengthModelSource(args.lengthModel);
   options.meshes = args.meshes;
-  options.quiet = args.quiet;
   const recon::DatasetReconstructionReport report = recon::reconstructDataset(args.dataset, args.out, options);
   core::writePng(std::filesystem::path(args.out) / "error_maps.png",
                  viz::renderReconstructionErrors(data::datasetGarment(data::readDatasetInfo(args.dataset)), report));
@@ -212,9 +208,8 @@ void runWriteBase(const ReconstructArgs& args) {
   options.markers.spacing = args.spacing;
   options.capture = {args.noiseCm / 100, args.dropout, args.seed};
   options.reconstruction = datasetReconstructionOptions(args);
-  options.lengthModel = args.lengthModel.empty() ? "fit" : args.lengthModel;
+  options.lengthModel = lengthModelSource(args.lengthModel);
   options.threads = args.threads;
-  options.quiet = args.quiet;
   const recon::BaseSetReport report = recon::writeDatasetBases(args.dataset, args.writeBase, options);
   std::cout << "reconstruct: base folder " << args.writeBase << " of " << args.dataset << ": " << report.summary()
             << "\n";
@@ -272,7 +267,9 @@ void registerReconstruct(CLI::App& app) {
   verb->add_option("--method", args->method, "linear, catmull_rom, spline or spline_anisotropic")
       ->capture_default_str();
   verb->add_option("--dataset", args->dataset, "Dataset folder: reconstruct every sample of --split by every method");
-  verb->add_option("--split", args->split, "train, regularisation, test or all")->capture_default_str();
+  verb->add_option("--split", args->split, "train, regularisation, test or all")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"train", "regularisation", "test", "all"}));
   verb->add_option("--noise", args->noiseCm, "Marker noise, cm (dataset form)")->capture_default_str();
   verb->add_option("--dropout", args->dropout, "Fraction of curve markers dropped (dataset form)")
       ->capture_default_str();

@@ -1,5 +1,4 @@
 // pixelcloth stitch: a garment from 28 patch crops (EXR) that any patch networks predicted, by one stitch mode.
-#include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -14,6 +13,7 @@
 #include "pixelcloth/garment/embedding.h"
 #include "pixelcloth/learn/spaces.h"
 #include "pixelcloth/patches/cloth_image.h"
+#include "pixelcloth/patches/crop_files.h"
 #include "pixelcloth/stitch/evaluate.h"
 #include "pixelcloth/stitch/seams.h"
 #include "pixelcloth/stitch/stitcher.h"
@@ -30,37 +30,16 @@ struct StitchVerbArgs {
   int sample = -1;
 };
 
-/// patch_NN.exr of `folder` for each patch: its enlarged crop's values, as a patch decoder's prediction (batch 1).
+/// The patch crops of `folder` (patches::readPatchCrops) as a patch decoder's predictions (batch 1).
 std::vector<learn::NetworkPrediction> readCrops(const fs::path& folder, const garment::Garment& garment) {
-  PIXELCLOTH_CHECK(fs::is_directory(folder), folder.string() << ": not a folder (expected patch_00.exr ... one per "
-                                                                "patch, each a 160 x 160 crop with channels du dv dn)");
   std::vector<learn::NetworkPrediction> out;
-  const std::vector<patches::Patch> all = patches::garmentPatches(garment);
-  for (const patches::Patch& patch : all) {
-    char name[32];
-    std::snprintf(name, sizeof(name), "patch_%02d.exr", patch.id);
-    const fs::path path = folder / name;
-    PIXELCLOTH_CHECK(fs::is_regular_file(path), path.string() << ": missing; the " << garment.name << " needs "
-                                                              << all.size() << " crops, patch_00.exr to patch_"
-                                                              << (all.size() - 1) << ".exr");
-    const patches::ClothImage image = patches::readClothImage(path);
-    const patches::EnlargedCrop crop = patches::enlargedCrop(garment, patch);
-    PIXELCLOTH_CHECK(image.layers.size() == 1 && image.width == crop.frame.width && image.height == crop.frame.height,
-                     path.string() << ": " << image.width << " x " << image.height << " with " << image.layers.size()
-                                   << " layer(s), expected one " << crop.frame.width << " x " << crop.frame.height
-                                   << " crop (channels du dv dn, as images --crops writes)");
-    const patches::ClothLayer& layer = image.layers.front();
-    Eigen::MatrixXf pixels(static_cast<Eigen::Index>(image.width) * image.height, 3);
-    pixels << patches::fromImage(layer.du), patches::fromImage(layer.dv), patches::fromImage(layer.dn);
-    const Eigen::MatrixXf sampled = crop.sample.apply(pixels);
+  for (patches::PatchCropValues& crop : patches::readPatchCrops(folder, garment)) {
     learn::NetworkPrediction p;
-    p.patch = patch.id;
-    p.vertices = crop.sample.vertices;
-    p.values.resize(1, 3 * static_cast<Eigen::Index>(p.vertices.size()));
-    for (size_t i = 0; i < p.vertices.size(); ++i)
-      p.values.block<1, 3>(0, 3 * static_cast<Eigen::Index>(i)) = sampled.row(p.vertices[i]);
-    PIXELCLOTH_CHECK(p.values.allFinite(), path.string() << ": values that are not finite (NaN or infinity) inside "
-                                                            "the patch");
+    p.patch = crop.patch;
+    p.vertices = std::move(crop.vertices);
+    // One row, vertex by vertex: du dv dn of the first vertex, then the second's, ...
+    const Eigen::MatrixXf rowMajor = crop.values.transpose();
+    p.values = Eigen::Map<const Eigen::MatrixXf>(rowMajor.data(), 1, rowMajor.size());
     out.push_back(std::move(p));
   }
   return out;
@@ -91,10 +70,7 @@ void runStitch(const StitchVerbArgs& args) {
   Eigen::MatrixX3d truth;
   if (args.sample >= 0) {
     const data::Dataset dataset = data::openDataset(args.dataset);
-    const int row = args.sample - info.settings.first();
-    PIXELCLOTH_CHECK(row >= 0 && row < dataset.rows(), "stitch --sample " << args.sample << ": " << args.dataset
-                                                                          << " holds samples " << info.settings.first()
-                                                                          << " to " << info.settings.end() - 1);
+    const int row = info.rowOfSample(args.sample, "stitch --sample");
     pose = body::Pose::fromLeading(dataset.pose(row));
     truth = dataset.positionsOf(row).cast<double>();
   } else if (!args.pose.empty()) {

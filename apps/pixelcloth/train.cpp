@@ -18,7 +18,8 @@ namespace pixelcloth::apps {
 
 namespace {
 struct TrainArgs {
-  std::string dataset, out, model = "whole", patches = "all", space, residual, patchModel;
+  std::string dataset, out, model = "whole", patches = "all", space, residual, patchModel, loss = "l1";
+  bool quiet = false;
   learn::TrainOptions options;
   stitch::GanOptions gan;
 };
@@ -62,10 +63,10 @@ void runTrainGan(TrainArgs args, const CLI::App& verb) {
   if (verb.count("--lr") > 0) gan.learningRate = args.options.learningRate;
   gan.seed = args.options.seed;
   gan.threads = args.options.threads;
-  gan.quiet = args.options.quiet;
   gan.validate();
   core::checkOutputFolder(args.out);
-  const PredictionInputs inputs = datasetPredictionInputs(args.patchModel, args.dataset, {}, learn::Engine::OneDnn);
+  const learn::PredictionInputs inputs =
+      learn::datasetPredictionInputs(args.patchModel, args.dataset, {}, learn::Engine::OneDnn);
   const stitch::GanReport report = stitch::trainGan(*inputs.model, inputs.data, gan, args.out);
   const stitch::GanEpoch& best = report.epochs[report.bestEpoch - 1];
   std::cout << std::fixed << std::setprecision(3) << "gan: epoch " << best.epoch << " of " << report.epochs.size()
@@ -75,8 +76,9 @@ void runTrainGan(TrainArgs args, const CLI::App& verb) {
 }
 
 void runTrain(TrainArgs args, const CLI::App& verb) {
-  if (args.options.quiet) core::setLogLevel(core::LogLevel::Warning);
+  if (args.quiet) core::setLogLevel(core::LogLevel::Warning);
   if (args.model == "gan") return runTrainGan(std::move(args), verb);
+  args.options.loss = learn::imageLossFromName(args.loss, "train --loss");
   PIXELCLOTH_CHECK(args.patchModel.empty() && verb.count("--l1-weight") == 0,
                    "train --model " << args.model << ": --patch-model and --l1-weight are options of --model gan");
   args.options.model.architecture = learn::architectureFromName(args.model, "--model");
@@ -133,7 +135,7 @@ void registerTrain(CLI::App& app) {
   verb->add_option("--residual", args->residual,
                    "Base folder of the dataset (reconstruct --write-base): learn ground truth minus the marker "
                    "reconstruction, with the marker features as extra inputs");
-  verb->add_option("--loss", args->options.loss, "Image loss on the padded UV mask: l1 or l2")
+  verb->add_option("--loss", args->loss, "Image loss on the padded UV mask: l1 or l2")
       ->check(CLI::IsMember({"l1", "l2"}))
       ->capture_default_str();
   verb->add_option("--normal-weight", args->options.normalWeight,
@@ -155,7 +157,7 @@ void registerTrain(CLI::App& app) {
                    "Model folder: model.tensors (best epoch), model.json, log.csv, checkpoint.tensors (patch_NN/ per patch; gan: "
                    "no checkpoint)")
       ->required();
-  verb->add_flag("--quiet", args->options.quiet, "No progress on stderr");
+  verb->add_flag("--quiet", args->quiet, "No progress on stderr");
   verb->callback([args, verb] { runTrain(*args, *verb); });
 }
 

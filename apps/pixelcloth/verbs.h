@@ -40,7 +40,8 @@ void registerPredict(CLI::App& app);
 void registerEvaluate(CLI::App& app);
 void registerPca(CLI::App& app);
 void registerStitch(CLI::App& app);
-/// `plot`: a line chart of a small JSON table (scripts/experiments' figures).
+/// `plot`: a line chart of a small JSON table.
 void registerPlot(CLI::App& app);
+void registerExperiments(CLI::App& app);
 
 }  // namespace pixelcloth::apps

@@ -69,7 +69,7 @@ std::string Progress::line() const {
 }
 
 void Progress::draw(bool final) {
-  if (logLevel() == LogLevel::Quiet) return;
+  if (logLevel() < LogLevel::Info) return;
   std::string text = line();
   if (final) {
     double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();

@@ -127,6 +127,7 @@ const core::EnumNames<Split, 3> kSplits{
 }  // namespace
 
 const char* splitName(Split split) { return kSplits.name(split); }
+Split splitFromName(const std::string& name, const std::string& context) { return kSplits.fromName(name, context); }
 
 std::vector<std::uint8_t> datasetSplit(std::uint64_t seed, int count) {
   PIXELCLOTH_CHECK(count >= 0, "split: negative sample count " << count);

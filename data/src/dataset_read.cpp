@@ -65,6 +65,13 @@ DatasetInfo readDatasetInfo(const fs::path& folder) {
   return info;
 }
 
+int DatasetInfo::rowOfSample(int sample, const std::string& what) const {
+  PIXELCLOTH_CHECK(sample >= settings.first() && sample < settings.end(),
+                   what << " " << sample << ": " << folder.string() << " holds samples " << settings.first() << " to "
+                        << settings.end() - 1);
+  return sample - settings.first();
+}
+
 std::string DatasetInfo::summary() const {
   const DatasetSettings& s = settings;
   std::ostringstream out;
@@ -194,6 +201,27 @@ garment::Embedding loadDatasetEmbedding(const fs::path& folder, int numBodyFaces
 Eigen::MatrixX3d loadDatasetRestPositions(const fs::path& folder, int vertexCount) {
   verifyFilesStartingWith(folder, kRestPositions);
   return core::readNpyMatrixD(folder / kRestPositions, vertexCount, 3);
+}
+
+DressingFiles loadDressingFiles(const fs::path& folder, const garment::Garment& garment,
+                                const std::string& garmentSource) {
+  const int V = garment.mesh.numVertices();
+  const fs::path restFile = folder / kRestPositions;
+  const core::NpyHeader restHeader = core::readNpyHeader(restFile);
+  const std::int64_t restRows = restHeader.shape.empty() ? 0 : restHeader.shape[0];
+  PIXELCLOTH_CHECK(restRows == V, restFile.string()
+                                      << ": shape " << restHeader.shapeString() << ": the dressing is of a garment of "
+                                      << restRows << " vertices, "
+                                      << (garmentSource.empty() ? "" : garmentSource + " are of ") << "the "
+                                      << garment.name << " (" << V << " vertices): the garments differ");
+  DressingFiles out;
+  out.body = loadDatasetBody(folder);
+  out.rest = loadDatasetRestPositions(folder, V);
+  out.embedding = loadDatasetEmbedding(folder, out.body.mesh.numFaces());
+  PIXELCLOTH_CHECK(out.embedding.size() == V, (folder / "embedding_triangle.npy").string()
+                                                  << ": " << out.embedding.size() << " cloth pixels, the "
+                                                  << garment.name << " has " << V);
+  return out;
 }
 
 garment::Garment datasetGarment(const DatasetInfo& info) {

@@ -5,10 +5,9 @@
 
 #include <torch/torch.h>
 
-namespace pixelcloth::learn {
+#include "pixelcloth/learn/train.h"
 
-/// Masked L1 (the paper's choice) or L2 on grid pixels.
-enum class ImageLoss { L1, L2 };
+namespace pixelcloth::learn {
 
 /// The paper's image loss on the enlarged patch: the mean over masked pixels and channels of |p - t| (L1) or
 /// (p - t)^2 (L2). `predicted`, `target` B x C x H x W; `mask` B x 1 x H x W (or broadcastable), 1 where the padded UV

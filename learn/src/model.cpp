@@ -2,10 +2,10 @@
 // LibTorch module and the summary (parameters, shapes, FLOPs) are made, so the two cannot disagree.
 #include "pixelcloth/learn/model.h"
 
+#include <ATen/CPUGeneratorImpl.h>
 #include <torch/torch.h>
 
 #include <cmath>
-#include <mutex>
 
 #include "layers.h"
 #include "model_impl.h"
@@ -172,6 +172,24 @@ LayerSummary summaryOf(const Layer& l, const std::vector<std::int64_t>& input) {
   return s;
 }
 
+/// LibTorch's default initialisation of Linear, Conv2d and ConvTranspose2d (weights and biases uniform in
+/// +-1/sqrt(fan in), fan in from the weight's second dimension and kernel as LibTorch computes it), drawn from a
+/// generator of `seed` of the network's own instead of LibTorch's global one: networks made on several threads at
+/// once get the same weights as one at a time. Batch norms keep their ones and zeros; buffers are not parameters.
+void initialiseParameters(torch::nn::Module& net, std::uint64_t seed) {
+  torch::NoGradGuard noGrad;
+  at::Generator generator = at::detail::createCPUGenerator(seed);
+  for (const std::shared_ptr<torch::nn::Module>& module : net.modules(/*include_self=*/true)) {
+    const auto own = module->named_parameters(/*recurse=*/false);
+    const torch::Tensor* weight = own.find("weight");
+    if (!weight || weight->dim() < 2) continue;
+    const double fanIn = static_cast<double>(weight->numel() / weight->size(0));
+    const double bound = 1.0 / std::sqrt(fanIn);
+    weight->uniform_(-bound, bound, generator);
+    if (const torch::Tensor* bias = own.find("bias")) bias->uniform_(-bound, bound, generator);
+  }
+}
+
 torch::nn::Sequential buildNetwork(const std::vector<Layer>& layers) {
   torch::nn::Sequential net;
   for (const Layer& l : layers) {
@@ -267,11 +285,8 @@ ModelSummary summarize(const ModelSpec& spec) {
 Model::Model(const ModelSpec& spec, std::uint64_t seed) : impl_(std::make_unique<Impl>()) {
   spec.validate();
   impl_->spec = spec;
-  // LibTorch's generator is global: models made on several threads at once (train's parallel networks) take turns.
-  static std::mutex generator;
-  const std::lock_guard<std::mutex> lock(generator);
-  torch::manual_seed(seed);
   impl_->net = buildNetwork(planOf(spec));
+  initialiseParameters(*impl_->net, seed);
   impl_->net->to(impl_->device);
 }
 

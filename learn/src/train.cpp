@@ -20,6 +20,7 @@
 #include "losses.h"
 #include "model_impl.h"
 #include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
@@ -238,10 +239,9 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
       parameters[k].zero_();
   }
   torch::optim::Adam adam(net->parameters(), torch::optim::AdamOptions(options.learningRate));
-  const ImageLoss imageLoss = options.loss == "l2" ? ImageLoss::L2 : ImageLoss::L1;
   const torch::Tensor mask = target.mask().unsqueeze(0);  // already on the device
 
-  nlohmann::json sidecar = modelSidecar(spec, data, job.patch, options.loss);
+  nlohmann::json sidecar = modelSidecar(spec, data, job.patch, imageLossName(options.loss));
   const nlohmann::json signature = signatureOf(sidecar, options, normalWeight, edgeWeight);
   NetworkReport report;
   report.patch = job.patch;
@@ -269,7 +269,7 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
     while (std::optional<Batch> batch = prefetch.next(record.dataWaitSeconds)) {
       batch->to(device);
       const torch::Tensor output = net->forward(batch->inputs);
-      torch::Tensor value = maskedImageLoss(output, batch->targets, mask, imageLoss);
+      torch::Tensor value = maskedImageLoss(output, batch->targets, mask, options.loss);
       record.loss += value.item<double>();
       if (geometry) {
         const torch::Tensor predicted = positionsOf(data.space, target.decode(output), *batch);
@@ -316,11 +316,19 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
 
 }  // namespace
 
+namespace {
+const core::EnumNames<ImageLoss, 2> kImageLosses{"loss", {{{ImageLoss::L1, "l1"}, {ImageLoss::L2, "l2"}}}};
+}  // namespace
+
+const char* imageLossName(ImageLoss loss) { return kImageLosses.name(loss); }
+ImageLoss imageLossFromName(const std::string& name, const std::string& context) {
+  return kImageLosses.fromName(name, context);
+}
+
 void TrainOptions::validate() const {
   ModelSpec spec = model;  // train() sets the baselines' output size from the dataset; check the rest now
   if (spec.outputValues == 0) spec.outputValues = std::max(3, spec.pcaComponents);
   spec.validate();
-  PIXELCLOTH_CHECK(loss == "l1" || loss == "l2", "train: loss '" << loss << "', expected l1 or l2");
   PIXELCLOTH_CHECK(epochs >= 1 && epochs <= 100000, "train: " << epochs << " epochs, expected 1 to 100000");
   PIXELCLOTH_CHECK(batch >= 1 && batch <= 4096, "train: batch " << batch << ", expected 1 to 4096");
   PIXELCLOTH_CHECK(std::isfinite(learningRate) && learningRate > 0,
@@ -399,9 +407,8 @@ TrainReport train(const fs::path& datasetFolder, const fs::path& out, const Trai
 
   TrainReport report;
   std::unique_ptr<core::Progress> progress;
-  if (!options.quiet)
-    progress = std::make_unique<core::Progress>("train " + std::string(architectureName(spec.architecture)),
-                                                static_cast<std::int64_t>(jobs.size()) * options.epochs);
+  progress = std::make_unique<core::Progress>("train " + std::string(architectureName(spec.architecture)),
+                                              static_cast<std::int64_t>(jobs.size()) * options.epochs);
   auto trainJob = [&](size_t k) {
     NetworkReport network = trainNetwork(data, jobs[k], spec, options, normalWeight, edgeWeight, progress.get());
     if (progress && network.resumedAt > 0) progress->advance(std::min(network.resumedAt, options.epochs));

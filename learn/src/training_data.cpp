@@ -6,11 +6,16 @@
 
 namespace pixelcloth::learn {
 
-const std::vector<int>& TrainingData::split(const std::string& name) const {
-  if (name == "train") return train;
-  if (name == "regularisation") return regularisation;
-  if (name == "test") return test;
-  PIXELCLOTH_FAIL("split '" << name << "', expected train, regularisation or test");
+const std::vector<int>& TrainingData::split(data::Split which) const {
+  switch (which) {
+    case data::Split::Train:
+      return train;
+    case data::Split::Regularisation:
+      return regularisation;
+    case data::Split::Test:
+      return test;
+  }
+  PIXELCLOTH_FAIL("split " << static_cast<int>(which) << ", expected train, regularisation or test");
 }
 
 TrainingData loadTrainingData(const std::filesystem::path& folder, OffsetSpace space,

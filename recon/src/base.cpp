@@ -67,7 +67,8 @@ void BaseSetOptions::validate() const {
   markers.validate();
   capture.validate();
   reconstruction.validate();
-  PIXELCLOTH_CHECK(!lengthModel.empty(), "bases: the length model is empty; expected fit, none or a file");
+  PIXELCLOTH_CHECK(lengthModel.kind != LengthModelSource::Kind::File || !lengthModel.file.empty(),
+                   "bases: the length model file is empty");
   lengthModelFit.validate();
   PIXELCLOTH_CHECK(threads >= 0 && threads <= 256,
                    "bases: threads " << threads << ", expected 0 (one per core) to 256");
@@ -117,7 +118,7 @@ BaseSetReport writeDatasetBases(const fs::path& datasetFolder, const fs::path& o
   const int threads = std::max(
       1, std::min(rows, options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency())));
   std::unique_ptr<core::Progress> progress;
-  if (!options.quiet) progress = std::make_unique<core::Progress>("bases", rows);
+  progress = std::make_unique<core::Progress>("bases", rows);
   std::atomic<int> next{0};
   std::exception_ptr failure;
   std::mutex failureMutex;

@@ -27,13 +27,12 @@ body::Pose poseOfRow(const data::Dataset& dataset, int row);
 cage::MarkerSet captureMarkers(const cage::MarkerSet& definition, const Eigen::MatrixX3d& truth,
                                const cage::CaptureOptions& capture, int index);
 
-/// Gives `reconstructor` the spline's length model that `lengthModel` names
-/// (DatasetReconstructionOptions::lengthModel): "fit" on the dataset's training split with `fit` (none when it has no
-/// training samples), "none", or a length model file, which must have been fitted at `markerSpacing`. Returns what the
-/// outputs record of it: "none", or
+/// Gives `reconstructor` the spline's length model of `lengthModel` (DatasetReconstructionOptions::lengthModel): one
+/// fitted on the dataset's training split with `fit` (none when it has no training samples), none, or a length model
+/// file, which must have been fitted at `markerSpacing`. Returns what the outputs record of it: "none", or
 /// {"source", "samples"}.
 nlohmann::json useLengthModel(GarmentReconstructor& reconstructor, const data::Dataset& dataset,
-                              const cage::MarkerSet& definition, const std::string& lengthModel, double markerSpacing,
-                              const cage::LengthModelOptions& fit);
+                              const cage::MarkerSet& definition, const LengthModelSource& lengthModel,
+                              double markerSpacing, const cage::LengthModelOptions& fit);
 
 }  // namespace pixelcloth::recon::detail

@@ -88,13 +88,12 @@ int PosedBody::pushOut(Eigen::MatrixX3d& points, double clearance) const {
 }
 
 void DatasetReconstructionOptions::validate() const {
-  PIXELCLOTH_CHECK(split == "train" || split == "regularisation" || split == "test" || split == "all",
-                   "reconstruct: split '" << split << "', expected train, regularisation, test or all");
   markers.validate();
   capture.validate();
   reconstruction.validate();
   PIXELCLOTH_CHECK(meshes >= 0, "reconstruct: meshes " << meshes << ", expected >= 0");
-  PIXELCLOTH_CHECK(!lengthModel.empty(), "reconstruct: the length model is empty; expected fit, none or a file");
+  PIXELCLOTH_CHECK(lengthModel.kind != LengthModelSource::Kind::File || !lengthModel.file.empty(),
+                   "reconstruct: the length model file is empty");
   lengthModelFit.validate();
 }
 
@@ -244,14 +243,14 @@ cage::MarkerSet captureMarkers(const cage::MarkerSet& definition, const Eigen::M
 }
 
 nlohmann::json useLengthModel(GarmentReconstructor& reconstructor, const data::Dataset& dataset,
-                              const cage::MarkerSet& definition, const std::string& lengthModel, double markerSpacing,
-                              const cage::LengthModelOptions& fit) {
+                              const cage::MarkerSet& definition, const LengthModelSource& lengthModel,
+                              double markerSpacing, const cage::LengthModelOptions& fit) {
   const std::string datasetName = dataset.info.folder.string();
-  if (lengthModel == "none") {
+  if (lengthModel.kind == LengthModelSource::Kind::None) {
     reconstructor.setLengthModel(std::nullopt);
     return "none";
   }
-  if (lengthModel == "fit") {
+  if (lengthModel.kind == LengthModelSource::Kind::Fit) {
     const std::vector<int> train = dataset.rowsOf(data::Split::Train);
     if (train.empty()) {
       PIXELCLOTH_INFO("reconstruct: " << datasetName
@@ -266,14 +265,14 @@ nlohmann::json useLengthModel(GarmentReconstructor& reconstructor, const data::D
     reconstructor.setLengthModel(model);
     return {{"source", "fitted on the train split"}, {"samples", model.samples}};
   }
-  const cage::LengthModel model = cage::readLengthModel(lengthModel);
+  const std::string file = lengthModel.file.string();
+  const cage::LengthModel model = cage::readLengthModel(lengthModel.file);
   PIXELCLOTH_CHECK(std::abs(model.markerSpacing - markerSpacing) < 1e-9,
-                   lengthModel << ": fitted for markers " << model.markerSpacing << " m apart, these are "
-                               << markerSpacing
-                               << " m apart; fit one at this spacing (reconstruct --dataset with "
-                                  "--length-model fit writes length_model.json)");
-  reconstructor.setLengthModel(model, lengthModel);
-  return {{"source", fs::absolute(lengthModel).string()}, {"samples", model.samples}};
+                   file << ": fitted for markers " << model.markerSpacing << " m apart, these are " << markerSpacing
+                        << " m apart; fit one at this spacing (reconstruct --dataset with "
+                           "--length-model fit writes length_model.json)");
+  reconstructor.setLengthModel(model, file);
+  return {{"source", fs::absolute(lengthModel.file).string()}, {"samples", model.samples}};
 }
 
 }  // namespace detail
@@ -293,9 +292,9 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
   const data::Dataset dataset = data::openDataset(datasetFolder);
   std::vector<int> rows;
   for (int r = 0; r < dataset.rows(); ++r)
-    if (options.split == "all" || options.split == data::splitName(static_cast<data::Split>(dataset.split[r])))
-      rows.push_back(r);
-  PIXELCLOTH_CHECK(!rows.empty(), datasetFolder.string() << ": the " << options.split << " split has no samples ("
+    if (!options.split || dataset.split[r] == static_cast<std::uint8_t>(*options.split)) rows.push_back(r);
+  const std::string splitLabel = options.split ? data::splitName(*options.split) : "all";
+  PIXELCLOTH_CHECK(!rows.empty(), datasetFolder.string() << ": the " << splitLabel << " split has no samples ("
                                                          << dataset.rows() << " in the folder); try --split all");
   const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<GarmentReconstructor> made = detail::datasetReconstructor(dataset, options.reconstruction);
@@ -385,7 +384,7 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
   report.metrics = {
       {"dataset", fs::absolute(datasetFolder).string()},
       {"garment", garment.name},
-      {"split", options.split},
+      {"split", splitLabel},
       {"samples", report.samples},
       {"markers", definition.markers.size()},
       {"marker_spacing_m", options.markers.spacing},
@@ -405,7 +404,7 @@ DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, co
   if (reconstructor.solver().lengthModel())
     cage::writeLengthModel(out / "length_model.json", *reconstructor.solver().lengthModel());
   core::writeJson(out / "metrics.json", report.metrics);
-  PIXELCLOTH_INFO("reconstruct: " << report.samples << " samples of " << datasetFolder.string() << " (" << options.split
+  PIXELCLOTH_INFO("reconstruct: " << report.samples << " samples of " << datasetFolder.string() << " (" << splitLabel
                                   << ") in " << seconds << " s -> " << out.string());
   return report;
 }

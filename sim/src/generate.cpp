@@ -174,8 +174,7 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
                                                          << " s)");
     PIXELCLOTH_INFO("generate: " << pending.size() << " samples on " << threads << " threads");
     std::unique_ptr<core::Progress> progress;
-    if (!options.quiet)
-      progress = std::make_unique<core::Progress>("generate " + garment.name, static_cast<int>(pending.size()));
+    progress = std::make_unique<core::Progress>("generate " + garment.name, static_cast<int>(pending.size()));
     std::atomic<int> rejected{0};
     std::mutex progressMutex;
     forEachOnSimulators(
@@ -218,12 +217,12 @@ namespace pixelcloth::sim {
 
 std::vector<data::SampleStats> simulatePoses(const body::Body& body, const garment::Garment& garment,
                                              const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
-                                             const SimulationOptions& options, int threads, bool quiet) {
+                                             const SimulationOptions& options, int threads) {
   std::vector<data::SampleStats> stats(poses.size());
   if (poses.empty()) return stats;
   GarmentSimulator first(body, garment, dressing, options);
   std::unique_ptr<core::Progress> progress;
-  if (!quiet) progress = std::make_unique<core::Progress>("simulate " + garment.name, static_cast<int>(poses.size()));
+  progress = std::make_unique<core::Progress>("simulate " + garment.name, static_cast<int>(poses.size()));
   std::mutex progressMutex;
   forEachOnSimulators(first, body, garment, dressing, options, static_cast<int>(poses.size()),
                       threadCount(threads, static_cast<int>(poses.size())), [&](GarmentSimulator& simulator, int k) {

@@ -120,10 +120,11 @@ double Evaluation::vertexErrorQuantileCm(double q) const {
   return sorted(static_cast<Eigen::Index>(q * (sorted.size() - 1)));
 }
 
-std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::TrainingData& data,
-                                 const std::string& split, const std::vector<const Stitcher*>& stitchers) {
+std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::TrainingData& data, data::Split split,
+                                 const std::vector<const Stitcher*>& stitchers) {
   const std::vector<int>& rows = data.split(split);
-  PIXELCLOTH_CHECK(!rows.empty(), "evaluate: " << data.folder.string() << " has no " << split << " samples");
+  const std::string splitLabel = data::splitName(split);
+  PIXELCLOTH_CHECK(!rows.empty(), "evaluate: " << data.folder.string() << " has no " << splitLabel << " samples");
   checkComplete(model, data);
   const std::vector<const Stitcher*> modes = stitchers.empty() ? std::vector<const Stitcher*>{nullptr} : stitchers;
   const core::Mesh& mesh = data.garment.mesh;
@@ -132,7 +133,7 @@ std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::
   std::vector<Tally> tallies;
   for (size_t m = 0; m < modes.size(); ++m) tallies.emplace_back(layout, V);
   double baseError = 0;
-  core::Progress progress("evaluate " + split, static_cast<std::int64_t>(rows.size()));
+  core::Progress progress("evaluate " + splitLabel, static_cast<std::int64_t>(rows.size()));
   for (size_t first = 0; first < rows.size(); first += 16) {
     const std::vector<int> chunk(rows.begin() + first, rows.begin() + std::min(rows.size(), first + 16));
     const std::vector<learn::NetworkPrediction> predictions = predictChunk(model, data, chunk);
@@ -173,6 +174,7 @@ std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::
   std::vector<Evaluation> out;
   for (size_t m = 0; m < modes.size(); ++m) {
     Evaluation evaluation;
+    if (modes[m]) evaluation.mode = modes[m]->mode();
     evaluation.vertexErrorCm = tallies[m].vertexErrorCm / n;
     nlohmann::json patchList = nlohmann::json::array();
     for (const patches::Patch& patch : patches::garmentPatches(data.garment)) {
@@ -184,20 +186,29 @@ std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::
                            {"vertex_error_cm", sum / patch.vertices.size()}});
     }
     const double cosine = tallies[m].cosine / n;
-    evaluation.metrics = {
-        {"split", split},
-        {"samples", rows.size()},
-        {"stitch", modes[m] ? modes[m]->mode().name() : std::string("mean")},
-        {"vertex_error_cm", evaluation.vertexErrorCm.mean()},
-        {"max_vertex_error_cm", tallies[m].maxError},
-        {"normal_cosine", cosine},
-        {"normal_cosine_distance", 1 - cosine},
-        {"base_vertex_error_cm", data.residual() ? nlohmann::json(baseError / n) : nlohmann::json()},
-        {"patches", patchList},
-        {"seams", tallies[m].seams.toJson()}};
+    evaluation.metrics = {{"split", splitLabel},
+                          {"samples", rows.size()},
+                          {"stitch", evaluation.mode.name()},
+                          {"vertex_error_cm", evaluation.vertexErrorCm.mean()},
+                          {"max_vertex_error_cm", tallies[m].maxError},
+                          {"normal_cosine", cosine},
+                          {"normal_cosine_distance", 1 - cosine},
+                          {"base_vertex_error_cm", data.residual() ? nlohmann::json(baseError / n) : nlohmann::json()},
+                          {"patches", patchList},
+                          {"seams", tallies[m].seams.toJson()}};
     out.push_back(std::move(evaluation));
   }
   return out;
+}
+
+int bestPcaMode(const std::vector<Evaluation>& evaluations) {
+  int best = -1;
+  for (size_t i = 0; i < evaluations.size(); ++i)
+    if (evaluations[i].mode.kind == StitchKind::Pca &&
+        (best < 0 || evaluations[i].metrics["vertex_error_cm"].get<double>() <
+                         evaluations[best].metrics["vertex_error_cm"].get<double>()))
+      best = static_cast<int>(i);
+  return best;
 }
 
 }  // namespace pixelcloth::stitch

@@ -196,9 +196,8 @@ GanReport trainGan(const learn::TrainedModel& patchModel, const learn::TrainingD
   for (int epoch = 1; epoch <= options.epochs; ++epoch) {
     const auto epochStart = Clock::now();
     std::unique_ptr<core::Progress> progress;
-    if (!options.quiet)
-      progress = std::make_unique<core::Progress>(
-          "train gan, epoch " + std::to_string(epoch) + "/" + std::to_string(options.epochs) + ", steps", steps);
+    progress = std::make_unique<core::Progress>(
+        "train gan, epoch " + std::to_string(epoch) + "/" + std::to_string(options.epochs) + ", steps", steps);
     std::vector<int> order = data.train;
     for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[shuffle() % i]);
     GanEpoch record;
@@ -235,12 +234,11 @@ GanReport trainGan(const learn::TrainedModel& patchModel, const learn::TrainingD
       core::writeJson(out / "model.json", info);
     }
     core::writeTextAtomically(out / "log.csv", csvOf(report.epochs));
-    if (!options.quiet)
-      PIXELCLOTH_INFO("train gan: epoch " << epoch << "/" << options.epochs << ": L1 " << record.generatorL1 * 100
-                                          << " cm, adversarial " << record.generatorAdversarial << ", discriminator "
-                                          << record.discriminator << "; regularisation " << record.regularisationErrorCm
-                                          << " cm blended, " << stitchedErrorCm << " cm stitched; " << record.seconds
-                                          << " s");
+    PIXELCLOTH_INFO("train gan: epoch " << epoch << "/" << options.epochs << ": L1 " << record.generatorL1 * 100
+                                        << " cm, adversarial " << record.generatorAdversarial << ", discriminator "
+                                        << record.discriminator << "; regularisation " << record.regularisationErrorCm
+                                        << " cm blended, " << stitchedErrorCm << " cm stitched; " << record.seconds
+                                        << " s");
   }
   report.seconds = secondsSince(start);
   return report;

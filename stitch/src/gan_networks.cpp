@@ -1,5 +1,7 @@
 #include "gan_networks.h"
 
+#include <ATen/CPUGeneratorImpl.h>
+
 #include <cmath>
 #include <sstream>
 
@@ -24,18 +26,19 @@ nn::ConvTranspose2d upConv(std::int64_t in, std::int64_t out, bool bias) {
 }
 nn::LeakyReLU leaky() { return nn::LeakyReLU(nn::LeakyReLUOptions().negative_slope(0.2)); }
 
-/// pix2pix's init_weights("normal", 0.02) on every layer of `module`.
-void initialiseWeights(nn::Module& module) {
+/// pix2pix's init_weights("normal", 0.02) on every layer of `module`, drawn from `generator` (the networks' own, not
+/// LibTorch's global one).
+void initialiseWeights(nn::Module& module, at::Generator& generator) {
   torch::NoGradGuard noGrad;
-  module.apply([](nn::Module& m) {
+  module.apply([&](nn::Module& m) {
     if (auto* c = m.as<nn::Conv2d>()) {
-      nn::init::normal_(c->weight, 0.0, 0.02);
+      c->weight.normal_(0.0, 0.02, generator);
       if (c->bias.defined()) c->bias.zero_();
     } else if (auto* t = m.as<nn::ConvTranspose2d>()) {
-      nn::init::normal_(t->weight, 0.0, 0.02);
+      t->weight.normal_(0.0, 0.02, generator);
       if (t->bias.defined()) t->bias.zero_();
     } else if (auto* b = m.as<nn::BatchNorm2d>()) {
-      nn::init::normal_(b->weight, 1.0, 0.02);
+      b->weight.normal_(1.0, 0.02, generator);
       b->bias.zero_();
     }
   });
@@ -45,18 +48,17 @@ void record(std::vector<std::vector<std::int64_t>>* shapes, const torch::Tensor&
   if (shapes) shapes->push_back(t.sizes().slice(1).vec());
 }
 
-UNetGenerator seededGenerator(double width, std::uint64_t seed) {
-  torch::manual_seed(seed);
-  UNetGenerator generator(width);
-  initialiseWeights(*generator);
+UNetGenerator seededGenerator(double width, at::Generator& random) {
+  UNetGenerator generator(width, random);
+  initialiseWeights(*generator, random);
   torch::NoGradGuard noGrad;
   for (torch::Tensor& p : generator->up[0]->parameters()) p.zero_();  // an untrained blender is the identity
   return generator;
 }
 
-PatchDiscriminator seededDiscriminator(double width) {
-  PatchDiscriminator discriminator(width);  // after the generator: the same seed gives both the same weights
-  initialiseWeights(*discriminator);
+PatchDiscriminator seededDiscriminator(double width, at::Generator& random) {
+  PatchDiscriminator discriminator(width);
+  initialiseWeights(*discriminator, random);
   return discriminator;
 }
 
@@ -70,7 +72,13 @@ std::int64_t ganChannels(double nominal, double width) {
   return std::max<std::int64_t>(1, std::llround(nominal * width));
 }
 
-UNetGeneratorImpl::UNetGeneratorImpl(double width_) : width(width_) {
+torch::Tensor SeededDropoutImpl::forward(const torch::Tensor& x) {
+  if (!is_training() || p == 0) return x;
+  const torch::Tensor keep = torch::empty_like(x).bernoulli_(1 - p, random);
+  return x * keep / (1 - p);
+}
+
+UNetGeneratorImpl::UNetGeneratorImpl(double width_, at::Generator random) : width(width_) {
   // e[i]: channels of the encoder's level i output (256 / 2^(i+1) pixels square).
   const double nominal[8] = {64, 128, 256, 512, 512, 512, 512, 512};
   std::int64_t e[8];
@@ -90,7 +98,7 @@ UNetGeneratorImpl::UNetGeneratorImpl(double width_) : width(width_) {
     const std::int64_t in = i == 7 ? e[7] : 2 * e[i], out = i == 0 ? kImageChannels : e[i - 1];
     block->push_back(upConv(in, out, i == 0));
     if (i > 0) block->push_back(nn::BatchNorm2d(out));
-    if (i >= 4 && i <= 6) block->push_back(nn::Dropout(0.5));
+    if (i >= 4 && i <= 6) block->push_back(SeededDropout(0.5, random));
     up.push_back(register_module("up" + std::to_string(i), block));
   }
   mean = register_buffer("mean", torch::zeros({1, kImageChannels, 1, 1}));
@@ -151,8 +159,9 @@ std::int64_t parameterCount(const nn::Module& module) {
 }
 
 GanNetworks::GanNetworks(double width, double learningRate, std::uint64_t seed)
-    : generator(seededGenerator(width, seed)),
-      discriminator(seededDiscriminator(width)),
+    : random(at::detail::createCPUGenerator(seed)),
+      generator(seededGenerator(width, random)),
+      discriminator(seededDiscriminator(width, random)),
       generatorAdam(generator->parameters(), adamOptions(learningRate)),
       discriminatorAdam(discriminator->parameters(), adamOptions(learningRate)) {}
 

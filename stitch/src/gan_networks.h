@@ -4,6 +4,7 @@
 // generator (Isola et al. 2017, "unet_256") and 70 x 70 PatchGAN discriminator, with whole-garment cloth images as
 // tensors.
 
+#include <ATen/CPUGeneratorImpl.h>
 #include <torch/torch.h>
 
 #include <Eigen/Core>
@@ -25,8 +26,19 @@ std::int64_t ganChannels(double nominal, double width);
 /// output concatenated to its decoder input. Unlike pix2pix's (tanh image out), it predicts a residual: the output is
 /// the input plus the last layer's image, in the input's per-channel scale, and that last layer starts at zero, so an
 /// untrained generator is the identity. Convolutions have no bias where BatchNorm follows (as pix2pix).
+/// Dropout (training only) whose masks are drawn from `random`, a generator shared with the networks it belongs to, so
+/// that a seed fixes the training run without LibTorch's global generator.
+struct SeededDropoutImpl : torch::nn::Module {
+  SeededDropoutImpl(double p, at::Generator random) : p(p), random(std::move(random)) {}
+  torch::Tensor forward(const torch::Tensor& x);
+  double p;
+  at::Generator random;
+};
+TORCH_MODULE(SeededDropout);
+
 struct UNetGeneratorImpl : torch::nn::Module {
-  explicit UNetGeneratorImpl(double width);
+  /// `random` draws the dropout masks (a copy shares its state).
+  explicit UNetGeneratorImpl(double width, at::Generator random = at::detail::createCPUGenerator());
   /// `x`: B x 6 x 256 x 256 offsets (metres) -> the same. When `shapes` is given, each layer's output shape (one
   /// sample) is appended to it, encoder first.
   torch::Tensor forward(const torch::Tensor& x, std::vector<std::vector<std::int64_t>>* shapes = nullptr);
@@ -71,6 +83,7 @@ class GanNetworks {
   /// counts (the padded UV mask), 0 elsewhere.
   GanStepLosses step(const torch::Tensor& x, const torch::Tensor& y, const torch::Tensor& mask, double l1Weight);
 
+  at::Generator random;  ///< the initial weights' draws (the seed's; not LibTorch's global generator)
   UNetGenerator generator;
   PatchDiscriminator discriminator;
   torch::optim::Adam generatorAdam, discriminatorAdam;

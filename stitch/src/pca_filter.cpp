@@ -140,4 +140,35 @@ Eigen::MatrixXf PcaFilter::filter(const Eigen::MatrixXf& values, int k) const {
 
 std::filesystem::path defaultPcaFolder(const std::filesystem::path& modelFolder) { return modelFolder / "pca"; }
 
+PcaFilter loadOrFitPcaFilter(const learn::TrainingData& data, const std::filesystem::path& modelFolder,
+                             const std::filesystem::path& folder, int rank) {
+  if (!folder.empty()) {
+    PcaFilter filter = PcaFilter::load(folder);
+    if (data.train.empty())  // one pose: no dataset rows to check against
+      filter.checkMatches(data.garment.name, data.garment.mesh.numVertices(), data.space);
+    else
+      filter.checkMatches(data);
+    return filter;
+  }
+  const std::filesystem::path saved = defaultPcaFolder(modelFolder);
+  if (std::filesystem::is_regular_file(saved / "pca.json")) {
+    PcaFilter filter = PcaFilter::load(saved);
+    bool matches = true;
+    try {
+      if (!data.train.empty()) filter.checkMatches(data);
+    } catch (const core::InputError&) {
+      matches = false;
+      PIXELCLOTH_INFO(saved.string() << ": fitted on another dataset; fitting again on " << data.folder.string());
+    }
+    if (matches && (rank == 0 || rank == filter.rank())) return filter;
+  }
+  PIXELCLOTH_CHECK(!data.train.empty(), "--stitch pca:K: " << saved.string()
+                                                           << " holds no PCA filter of this model's dataset; fit one "
+                                                              "with pixelcloth pca or evaluate --stitch pca:K first, "
+                                                              "or give --pca DIR");
+  PcaFilter filter = PcaFilter::fit(data, rank);
+  filter.save(saved);
+  return filter;
+}
+
 }  // namespace pixelcloth::stitch

@@ -52,7 +52,7 @@ SeamLayout::SeamLayout(const garment::Garment& garment)
     }
   std::set<int> near, cageVertices;
   for (const cage::CageCurve& c : cage.curves) {
-    SeamCurve curve{c.name, cage::curveKindName(c.kind), c.vertices, {}, {}};
+    SeamCurve curve{c.name, c.kind, c.vertices, {}, {}};
     const size_t n = c.vertices.size();
     for (size_t i = 0; i + 1 < n + (c.closed ? 1 : 0); ++i) {
       const auto found = edgeFaces.find(std::minmax(c.vertices[i], c.vertices[(i + 1) % n]));
@@ -140,7 +140,7 @@ nlohmann::json SeamMetrics::toJson() const {
   for (size_t c = 0; c < curves_.size(); ++c) {
     const SeamCurve& curve = layout_->curves()[c];
     curves.push_back({{"name", curve.name},
-                      {"kind", curve.kind},
+                      {"kind", garment::curveKindName(curve.kind)},
                       {"vertices", curve.vertices.size()},
                       {"shared_vertices", shared_[c]},
                       {"gap_cm", gapJson(curves_[c])},

@@ -240,6 +240,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
         "--normal-weight", "--edge-weight", "--epochs", "--batch", "--lr", "--seed", "--threads", "--out", "--quiet"}},
       {"predict", {"--model", "--pose", "--markers", "--dataset", "--samples", "--base", "--out"}},
       {"evaluate", {"--model", "--dataset", "--split", "--base", "--out"}},
+      {"experiments", {"--scale", "small", "full", "--out", "--threads"}},
   };
   for (const auto& [verb, options] : verbs) {
     SCOPED_TRACE(verb);
@@ -1253,7 +1254,7 @@ TEST_F(CliReconstructTest, RefusesBadInputsNamingTheFileAndWritesNothing) {
 }
 
 // ---------------------------------------------------------------------------------------------------------------------
-// Issue 16: the gaps a new user's bad inputs found
+// The gaps a new user's bad inputs found
 
 TEST_F(CliTest, NegativeSeedsAreRefusedInEveryVerb) {
   const fs::path work = dir("work");

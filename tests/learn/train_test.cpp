@@ -65,7 +65,6 @@ pl::TrainOptions necktieOptions(int epochs) {
   options.batch = 4;
   options.learningRate = 2e-3;
   options.seed = 1;
-  options.quiet = true;
   return options;
 }
 
@@ -152,7 +151,6 @@ pl::TrainOptions patchOptions(std::vector<int> patches, int epochs) {
   options.model.width = 0.0625;
   options.epochs = epochs;
   options.batch = 2;
-  options.quiet = true;
   options.patches = std::move(patches);
   return options;
 }

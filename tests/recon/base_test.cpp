@@ -74,7 +74,6 @@ TEST(WriteDatasetBases, EveryRowIsTheReconstructorsRebuildAndItsMarkersOffsets) 
   // A clearance well beyond the worn shirts' gap to the body, so that some vertices are pushed out and the base
   // offsets must be those of the moved positions.
   options.reconstruction.bodyClearance = 0.006;
-  options.quiet = true;
   const pr::BaseSetReport report = pr::writeDatasetBases(smallDataset(), out, options);
   std::cout << "[bases] " << report.summary() << "\n";
   const pd::Dataset dataset = pd::openDataset(smallDataset());
@@ -130,8 +129,7 @@ TEST(WriteDatasetBases, CapturedMarkersAreSeededPerSampleAndThreadsChangeNothing
   options.markers.spacing = 0.05;
   options.capture = {0.004, 0.2, 11};
   options.reconstruction.spline.markerSigma = 0.004;
-  options.lengthModel = "none";
-  options.quiet = true;
+  options.lengthModel = pr::LengthModelSource::none();
   pr::writeDatasetBases(smallDataset(), one, options);
   options.threads = 2;
   pr::writeDatasetBases(smallDataset(), two, options);
@@ -163,7 +161,6 @@ TEST(WriteDatasetBases, CapturedMarkersAreSeededPerSampleAndThreadsChangeNothing
 
 TEST(WriteDatasetBases, RefusesBadOptionsAndFolders) {
   pr::BaseSetOptions options;
-  options.quiet = true;
   options.threads = -1;
   EXPECT_NE(inputErrorOf([&] { pr::writeDatasetBases(smallDataset(), freshDir("a"), options); }).find("threads"),
             std::string::npos);

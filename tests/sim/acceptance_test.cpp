@@ -17,7 +17,7 @@ TEST(SampledTShirtPoses, MostPassThePapersAreaTestRaisedArmsIncluded) {
   constexpr int kPoses = 96;
   std::vector<body::Pose> poses;
   for (int i = 0; i < kPoses; ++i) poses.push_back(samplePose(body, garment::GarmentTraits{}, 7, i, 0));
-  const std::vector<data::SampleStats> stats = simulatePoses(body, shirt, dressing, poses, {}, 0, true);
+  const std::vector<data::SampleStats> stats = simulatePoses(body, shirt, dressing, poses, {}, 0);
 
   int kept = 0, raised = 0, raisedKept = 0;
   for (int i = 0; i < kPoses; ++i) {
@@ -45,7 +45,7 @@ TEST(SampledTShirtPoses, MostPassThePapersAreaTestRaisedArmsIncluded) {
   // them, and every pose they win back is a later iterate that passes the same test.
   SimulationOptions scheduleOnly;
   scheduleOnly.extraIterations = 0;
-  const std::vector<data::SampleStats> plain = simulatePoses(body, shirt, dressing, poses, scheduleOnly, 0, true);
+  const std::vector<data::SampleStats> plain = simulatePoses(body, shirt, dressing, poses, scheduleOnly, 0);
   int keptPlain = 0, wonBack = 0;
   for (int i = 0; i < kPoses; ++i) {
     EXPECT_EQ(plain[i].extraRounds, 0) << "pose " << i;

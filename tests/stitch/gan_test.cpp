@@ -186,7 +186,6 @@ const Trained& trained() {
     patch.model.width = 0.0625;
     patch.epochs = 1;
     patch.batch = 2;
-    patch.quiet = true;
     pl::train(t.dataset, t.patches, patch);
     t.data = pl::loadTrainingData(t.dataset, pl::OffsetSpace::Local, {});
     t.patchModel = std::make_unique<pl::TrainedModel>(t.patches, t.data.garment);
@@ -194,7 +193,6 @@ const Trained& trained() {
     t.options.epochs = 2;
     t.options.batch = 2;
     t.options.seed = 3;
-    t.options.quiet = true;
     t.report = ps::trainGan(*t.patchModel, t.data, t.options, t.blender);
     return t;
   }();
@@ -304,7 +302,6 @@ TEST(Gan, RefusesAModelThatIsNotAPatchModelOrWasTrainedOnOtherData) {
   options.model.architecture = pl::Architecture::Whole;
   options.model.width = 0.03125;
   options.epochs = 1;
-  options.quiet = true;
   pl::train(t.dataset, whole, options);
   const pl::TrainedModel wholeModel(whole, t.data.garment);
   const std::string notPatch = inputErrorOf([&] { ps::trainGan(wholeModel, t.data, t.options, out / "a"); });

@@ -134,8 +134,8 @@ TEST(BasisFigures, EveryShapeFilledBothWays) {
 
 TEST(GarmentPatches, PictureShowsBothSides) {
   std::vector<pv::PictureCurve> curves;
-  for (const auto& seam : shirt().seams) curves.push_back({seam.vertices, false, "seam"});
-  for (const auto& line : shirt().lines) curves.push_back({line.vertices, line.closed, pixelcloth::garment::curveKindName(line.kind)});
+  for (const auto& seam : shirt().seams) curves.push_back({seam.vertices, false, pixelcloth::garment::CurveKind::Seam});
+  for (const auto& line : shirt().lines) curves.push_back({line.vertices, line.closed, line.kind});
   const pc::RgbImage image = pv::renderPatches(shirt(), shirtPatches(), curves, 256);
   EXPECT_GT(image.width, 2 * 256);
   EXPECT_GT(image.height, 256);

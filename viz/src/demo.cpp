@@ -336,15 +336,14 @@ void demoReconstruction(Report& report, const body::Body& body) {
     // dataset is too small to have one).
     const data::Dataset dataset = data::openDataset(report.folder() / "dataset_tshirt");
     recon::DatasetReconstructionOptions options;
-    options.split = dataset.rowsOf(data::Split::Test).empty() ? "all" : "test";
+    if (dataset.rowsOf(data::Split::Test).empty()) options.split.reset();
     options.meshes = 2;
     const fs::path folder = report.folder() / "reconstruction";
     const recon::DatasetReconstructionReport rec =
         recon::reconstructDataset(report.folder() / "dataset_tshirt", folder, options);
     std::vector<int> shown;
     for (int r = 0; r < dataset.rows() && static_cast<int>(shown.size()) < 2; ++r)
-      if (options.split == "all" || dataset.split[r] == static_cast<std::uint8_t>(data::Split::Test))
-        shown.push_back(r);
+      if (!options.split || dataset.split[r] == static_cast<std::uint8_t>(data::Split::Test)) shown.push_back(r);
     const Garment shirt = data::datasetGarment(dataset.info);
     writePng(folder / "error_maps.png", renderReconstructionErrors(shirt, rec));
     std::vector<RgbImage> rows;
@@ -521,7 +520,6 @@ void demoNetworks(Report& report) {
     options.epochs = 60;
     options.batch = 2;
     options.learningRate = 2e-3;
-    options.quiet = true;
     trained = learn::train(report.folder() / "dataset_necktie", report.freshFolder("model_necktie"), options).networks.front();
     writePng(report.folder() / "model_necktie" / "training.png", renderTrainingCurves(trained, "necktie width 0.25"));
     const learn::EpochRecord& best = trained.epochs[trained.bestEpoch - 1];

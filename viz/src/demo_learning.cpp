@@ -47,7 +47,6 @@ void demoLearning(Report& report, const body::Body& body, const DemoOptions& dem
   const fs::path datasetFolder = report.folder() / "dataset_tshirt", baseFolder = report.folder() / "bases_tshirt";
   report.step("learning: the marker reconstruction of every T-shirt sample, as the residual models' base", [&] {
     recon::BaseSetOptions options;
-    options.quiet = true;
     const recon::BaseSetReport bases = recon::writeDatasetBases(datasetFolder, baseFolder, options);
     report.json()["bases_tshirt"] = {{"samples", bases.samples}, {"markers", bases.markers},
                                      {"garment_error_cm", bases.meanErrorCm}, {"seconds", bases.seconds}};
@@ -62,7 +61,6 @@ void demoLearning(Report& report, const body::Body& body, const DemoOptions& dem
       options.epochs = demo.learningEpochs;
       options.batch = 4;
       options.learningRate = 2e-3;
-      options.quiet = true;
       if (m.residual) {
         options.residual = baseFolder;
         options.model.inputSize = body::kPoseSize + 3 * report.json()["bases_tshirt"]["markers"].get<int>();
@@ -95,20 +93,21 @@ void demoLearning(Report& report, const body::Body& body, const DemoOptions& dem
       const learn::TrainedModel model(report.folder() / m.folder, shirt);
       const learn::TrainingData data =
           learn::loadTrainingData(datasetFolder, model.space(), m.residual ? baseFolder : fs::path());
-      const std::string split = data.test.empty() ? "train" : "test";
+      const data::Split split = data.test.empty() ? data::Split::Train : data::Split::Test;
       const stitch::Evaluation evaluation = stitch::evaluate(model, data, split).front();
-      table[m.name]["split"] = split;
+      table[m.name]["split"] = data::splitName(split);
       table[m.name]["samples"] = evaluation.metrics["samples"];
       table[m.name]["dataset_samples"] = data.rows();
       table[m.name]["vertex_error_cm"] = evaluation.metrics["vertex_error_cm"];
       table[m.name]["normal_cosine"] = evaluation.metrics["normal_cosine"];
       if (m.residual)
-        table["markers_alone"] = {{"split", split}, {"vertex_error_cm", evaluation.metrics["base_vertex_error_cm"]}};
+        table["markers_alone"] = {{"split", data::splitName(split)},
+                                  {"vertex_error_cm", evaluation.metrics["base_vertex_error_cm"]}};
       // Each map on its own scale, 0 to its 95th percentile: the pose-only models are off by centimetres, the residual
       // one by millimetres.
       const double high = std::max(1e-3, evaluation.vertexErrorQuantileCm(0.95));
       std::ostringstream title;
-      title << std::fixed << std::setprecision(2) << m.name << ": " << split << " error "
+      title << std::fixed << std::setprecision(2) << m.name << ": " << data::splitName(split) << " error "
             << evaluation.metrics["vertex_error_cm"].get<double>() << " cm, scale 0 to " << high << " cm";
       maps.push_back(renderPatternValues(shirt, evaluation.vertexErrorCm, high, title.str(), 256));
       if (shown.empty()) {  // the split's first two samples, ground truth first

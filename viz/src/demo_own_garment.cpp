@@ -81,7 +81,6 @@ void demoOwnGarment(Report& report, const body::Body& body, const DemoOptions& d
     generate.count = demo.ownGarmentSamples;
     generate.seed = demo.seed;
     generate.bodyFolder = report.folder() / "body";
-    generate.quiet = true;
     const sim::GenerateReport made = sim::generateDataset(datasetFolder, generate);
     const data::DatasetCheckReport checked = data::checkDataset(datasetFolder);
     const data::Dataset dataset = data::openDataset(datasetFolder);
@@ -90,9 +89,8 @@ void demoOwnGarment(Report& report, const body::Body& body, const DemoOptions& d
                           {"check", checked.summary()},
                           {"stats", dataset.info.stats.toJson()}};
     recon::DatasetReconstructionOptions options;
-    options.split = "all";
+    options.split.reset();  // every row
     options.meshes = 1;
-    options.quiet = true;
     const recon::DatasetReconstructionReport rec =
         recon::reconstructDataset(datasetFolder, folder / "reconstruction", options);
     figures["reconstruction"] = {{"markers", rec.metrics["markers"]},
@@ -107,7 +105,6 @@ void demoOwnGarment(Report& report, const body::Body& body, const DemoOptions& d
     options.epochs = demo.learningEpochs;
     options.batch = 4;
     options.learningRate = 2e-3;
-    options.quiet = true;
     const fs::path modelFolder = folder / "model_patch";
     const learn::TrainReport trained = learn::train(datasetFolder, modelFolder, options);
     writePng(modelFolder / "training.png",
@@ -116,7 +113,7 @@ void demoOwnGarment(Report& report, const body::Body& body, const DemoOptions& d
     const garment::Garment shirt = data::datasetGarment(data::readDatasetInfo(datasetFolder));
     const learn::TrainedModel model(modelFolder, shirt);
     const learn::TrainingData data = learn::loadTrainingData(datasetFolder, model.space(), fs::path());
-    const std::string split = data.test.empty() ? "train" : "test";
+    const data::Split split = data.test.empty() ? data::Split::Train : data::Split::Test;
     const stitch::Evaluation evaluation = stitch::evaluate(model, data, split).front();
     const std::vector<int>& rows = data.split(split);
     const std::vector<int> shown(rows.begin(), rows.begin() + std::min<size_t>(2, rows.size()));
@@ -143,7 +140,7 @@ void demoOwnGarment(Report& report, const body::Body& body, const DemoOptions& d
                            {"width", options.model.width},
                            {"epochs", options.epochs},
                            {"seconds", trained.seconds},
-                           {"split", split},
+                           {"split", data::splitName(split)},
                            {"samples", evaluation.metrics["samples"]},
                            {"vertex_error_cm", evaluation.metrics["vertex_error_cm"]}};
   });

@@ -27,8 +27,9 @@ std::string tableRow(const std::string& name, const fs::path& folder, const fs::
                      const garment::Garment& shirt, nlohmann::json& json) {
   const learn::TrainedModel model(folder, shirt);
   const learn::TrainingData data = learn::loadTrainingData(dataset, model.space(), fs::path());
-  const nlohmann::json train = stitch::evaluate(model, data, "train").front().metrics;
-  const nlohmann::json test = stitch::evaluate(model, data, data.test.empty() ? "train" : "test").front().metrics;
+  const nlohmann::json train = stitch::evaluate(model, data, data::Split::Train).front().metrics;
+  const nlohmann::json test =
+      stitch::evaluate(model, data, data.test.empty() ? data::Split::Train : data::Split::Test).front().metrics;
   json[name] = {{"train_vertex_error_cm", train["vertex_error_cm"]},
                 {"test_vertex_error_cm", test["vertex_error_cm"]},
                 {"test_normal_cosine_distance", test["normal_cosine_distance"]}};
@@ -46,7 +47,7 @@ std::string tableRow(const std::string& name, const fs::path& folder, const fs::
 std::string paperTables(Report& report, const fs::path& dataset, const garment::Garment& shirt, int epochs) {
   nlohmann::json& json = report.json()["paper_tables"];
   const int trainSamples = static_cast<int>(learn::loadTrainingData(dataset, learn::OffsetSpace::Local, {}).train.size());
-  auto train = [&](const std::string& folder, learn::Architecture architecture, const std::string& loss,
+  auto train = [&](const std::string& folder, learn::Architecture architecture, learn::ImageLoss loss,
                    double normalWeight, learn::OffsetSpace space) {
     learn::TrainOptions options;
     options.model.architecture = architecture;
@@ -58,7 +59,6 @@ std::string paperTables(Report& report, const fs::path& dataset, const garment::
     options.epochs = epochs;
     options.batch = 4;
     options.learningRate = 2e-3;
-    options.quiet = true;
     learn::train(dataset, report.freshFolder(fs::path("paper_tables") / folder), options);
     return report.folder() / "paper_tables" / folder;
   };
@@ -67,9 +67,10 @@ std::string paperTables(Report& report, const fs::path& dataset, const garment::
   md << "## The paper's tables on the demo's shirts\n\n" << trainSamples << " train samples, " << epochs
      << " epochs each; far from the paper's scale, so read the orderings, not the figures.\n\n"
      << "Table 1, the whole-garment decoder (width 0.125) by loss:\n\n" << header;
-  for (const auto& [name, loss, weight] : {std::tuple<const char*, const char*, double>{"L1", "l1", 0.0},
-                                          {"L2", "l2", 0.0},
-                                          {"L2 + normal", "l2", 0.01}})
+  for (const auto& [name, loss, weight] :
+       {std::tuple<const char*, learn::ImageLoss, double>{"L1", learn::ImageLoss::L1, 0.0},
+        {"L2", learn::ImageLoss::L2, 0.0},
+        {"L2 + normal", learn::ImageLoss::L2, 0.01}})
     md << tableRow(name, train(std::string("whole_") + name, learn::Architecture::Whole, loss, weight,
                                learn::OffsetSpace::Local),
                    dataset, shirt, json["table1"]);
@@ -82,8 +83,9 @@ std::string paperTables(Report& report, const fs::path& dataset, const garment::
        {learn::OffsetSpace::Local, learn::OffsetSpace::Root, learn::OffsetSpace::Positions})
     for (const learn::Architecture architecture : {learn::Architecture::FullyConnected, learn::Architecture::FullyConnectedPca}) {
       const std::string name = std::string(learn::architectureName(architecture)) + ", " + learn::offsetSpaceName(space);
-      md << tableRow(name, train(std::string(learn::architectureName(architecture)) + "_" + learn::offsetSpaceName(space),
-                                 architecture, "l1", 0.0, space),
+      md << tableRow(name,
+                     train(std::string(learn::architectureName(architecture)) + "_" + learn::offsetSpaceName(space),
+                           architecture, learn::ImageLoss::L1, 0.0, space),
                      dataset, shirt, json["table2"]);
     }
   return md.str();
@@ -105,7 +107,6 @@ void demoSeams(Report& report, const body::Body& body, const DemoOptions& demo) 
     stitch::GanOptions options;
     options.width = 0.0625;
     options.epochs = 3;
-    options.quiet = true;
     const stitch::GanReport gan = stitch::trainGan(model, data, options, report.freshFolder(ganFolder.filename()));
     json["gan"] = {{"width", options.width}, {"epochs", options.epochs}, {"best_epoch", gan.bestEpoch},
                    {"seconds", gan.seconds}, {"parameters", stitch::ganSummary(options.width)["generator"]["parameters"]}};
@@ -119,8 +120,8 @@ void demoSeams(Report& report, const body::Body& body, const DemoOptions& demo) 
     sweep.emplace_back(shirt, stitch::parseStitchMode("pca:" + std::to_string(pca->rank()), "demo"), pca);
     std::vector<const stitch::Stitcher*> modes;
     for (const stitch::Stitcher& s : sweep) modes.push_back(&s);
-    const std::vector<stitch::Evaluation> chosenOn = stitch::evaluate(model, data, "regularisation", modes);
-    const int best = bestPcaMode(chosenOn);
+    const std::vector<stitch::Evaluation> chosenOn = stitch::evaluate(model, data, data::Split::Regularisation, modes);
+    const int best = stitch::bestPcaMode(chosenOn);
     const std::string chosen = chosenOn[best].metrics["stitch"].get<std::string>();
 
     std::vector<stitch::Stitcher> final;
@@ -132,12 +133,12 @@ void demoSeams(Report& report, const body::Body& body, const DemoOptions& demo) 
         final.emplace_back(shirt, s.mode(), pca);
     modes.clear();
     for (const stitch::Stitcher& s : final) modes.push_back(&s);
-    const std::string split = data.test.empty() ? "train" : "test";
+    const data::Split split = data.test.empty() ? data::Split::Train : data::Split::Test;
     const std::vector<stitch::Evaluation> measured = stitch::evaluate(model, data, split, modes);
 
     SeamReportInputs inputs;
-    inputs.title = "the demo's 28 pose-only patch decoders on its " + std::to_string(data.rows()) + " shirts, " + split +
-                   " split (pca:K chosen on the regularisation split: " + chosen + ")";
+    inputs.title = "the demo's 28 pose-only patch decoders on its " + std::to_string(data.rows()) + " shirts, " +
+                   data::splitName(split) + " split (pca:K chosen on the regularisation split: " + chosen + ")";
     inputs.garment = shirt;
     inputs.evaluations = measured;
     inputs.extra = tables;
@@ -152,7 +153,7 @@ void demoSeams(Report& report, const body::Body& body, const DemoOptions& demo) 
     }
     writeSeamReport(report.folder() / "seams", inputs);
     json["chosen"] = chosen;
-    json["split"] = split;
+    json["split"] = data::splitName(split);
     json["modes"] = nlohmann::json::array();
     for (const stitch::Evaluation& e : measured) {
       nlohmann::json m = e.metrics;

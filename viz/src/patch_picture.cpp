@@ -16,12 +16,19 @@ using namespace patches;
 
 namespace {
 
-core::Color kindColor(const std::string& kind) {
-  if (kind == "seam") return {170, 20, 30};
-  if (kind == "loop") return {20, 70, 200};
-  if (kind == "centre_line") return {20, 140, 40};
-  if (kind == "opening") return {20, 20, 20};
-  if (kind == "split") return {235, 130, 0};
+core::Color kindColor(garment::CurveKind kind) {
+  switch (kind) {
+    case garment::CurveKind::Seam:
+      return {170, 20, 30};
+    case garment::CurveKind::Loop:
+      return {20, 70, 200};
+    case garment::CurveKind::CentreLine:
+      return {20, 140, 40};
+    case garment::CurveKind::Opening:
+      return {20, 20, 20};
+    case garment::CurveKind::Split:
+      return {235, 130, 0};
+  }
   return {120, 120, 120};
 }
 
@@ -68,7 +75,7 @@ core::RgbImage renderPatches(const garment::Garment& garment, const std::vector<
   // Openings and seams first, lines over them.
   for (int pass = 0; pass < 2; ++pass) {
     for (const PictureCurve& curve : curves) {
-      const bool boundary = curve.kind == "seam" || curve.kind == "opening";
+      const bool boundary = curve.kind == garment::CurveKind::Seam || curve.kind == garment::CurveKind::Opening;
       if (boundary != (pass == 0)) continue;
       const size_t n = curve.vertices.size();
       for (size_t i = 0; i + (curve.closed ? 0 : 1) < n; ++i) {

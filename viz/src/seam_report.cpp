@@ -24,13 +24,12 @@ namespace {
 
 /// The k of a "pca:K" mode; 0 for other modes.
 int pcaComponents(const stitch::Evaluation& e) {
-  const std::string mode = e.metrics.value("stitch", "");
-  return mode.rfind("pca:", 0) == 0 ? std::stoi(mode.substr(4)) : 0;
+  return e.mode.kind == stitch::StitchKind::Pca ? e.mode.components : 0;
 }
 
 const stitch::Evaluation* meanMode(const std::vector<stitch::Evaluation>& evaluations) {
   for (const stitch::Evaluation& e : evaluations)
-    if (e.metrics.value("stitch", "") == "mean") return &e;
+    if (e.mode.kind == stitch::StitchKind::Mean) return &e;
   return nullptr;
 }
 
@@ -79,16 +78,6 @@ std::string figureText(const nlohmann::json& value, int digits) {
   return out.str();
 }
 
-int bestPcaMode(const std::vector<stitch::Evaluation>& evaluations) {
-  int best = -1;
-  for (size_t i = 0; i < evaluations.size(); ++i)
-    if (pcaComponents(evaluations[i]) > 0 &&
-        (best < 0 || evaluations[i].metrics["vertex_error_cm"].get<double>() <
-                         evaluations[best].metrics["vertex_error_cm"].get<double>()))
-      best = static_cast<int>(i);
-  return best;
-}
-
 core::RgbImage renderPcaSweep(const std::vector<stitch::Evaluation>& evaluations, int width, int height) {
   std::vector<std::pair<int, const stitch::Evaluation*>> sweep;
   for (const stitch::Evaluation& e : evaluations)
@@ -108,7 +97,7 @@ core::RgbImage renderPcaSweep(const std::vector<stitch::Evaluation>& evaluations
                meanJump = mean && mean->metrics["seams"]["normal_jump_deg"].is_number()
                               ? mean->metrics["seams"]["normal_jump_deg"].get<double>()
                               : 0;
-  const int best = bestPcaMode(evaluations);
+  const int best = stitch::bestPcaMode(evaluations);
   const int chosen = best >= 0 ? pcaComponents(evaluations[best]) : 0;
   core::RgbImage image(width, height);
   const int half = width / 2;
@@ -174,7 +163,7 @@ void writeSeamReport(const fs::path& folder, const SeamReportInputs& inputs) {
   core::ensureOutputFolder(folder);
   const std::vector<stitch::Evaluation>& evaluations = inputs.evaluations;
   const stitch::Evaluation* mean = meanMode(evaluations);
-  const int best = bestPcaMode(evaluations);
+  const int best = stitch::bestPcaMode(evaluations);
   std::ostringstream md;
   md << "# Seams: " << inputs.title << "\n\n";
   if (!inputs.command.empty()) md << "```sh\n" << inputs.command << "\n```\n\n";

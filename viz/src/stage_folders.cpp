@@ -53,8 +53,7 @@ void writeCageFolder(const garment::Garment& garment, const std::filesystem::pat
   core::writeJson(out / "patches.json", {{"garment", garment.name}, {"image_size", size}, {"patches", list}});
 
   std::vector<PictureCurve> curves;
-  for (const cage::CageCurve& curve : cage.curves)
-    curves.push_back({curve.vertices, curve.closed, cage::curveKindName(curve.kind)});
+  for (const cage::CageCurve& curve : cage.curves) curves.push_back({curve.vertices, curve.closed, curve.kind});
   core::writePng(out / "cage.png", renderPatches(garment, patchList, curves, size));
   PIXELCLOTH_INFO("cage: " << garment.name << ": " << cage.curves.size() << " curves, " << cage.nodes.size()
                            << " nodes, " << patchList.size() << " patches, largest patch " << largest << " px of "

@@ -7,7 +7,7 @@
 namespace pixelcloth::core {
 
 /// A progress line on stderr: "label  120/500  24%  38.2/s  ETA 0:10". Redrawn at most every 0.2 s,
-/// finished with a summary line. Silent when the log level is Quiet (`--quiet`). Thread-safe `advance`.
+/// finished with a summary line. Silent below the Info log level (`--quiet`). Thread-safe `advance`.
 class Progress {
  public:
   Progress(std::string label, std::int64_t total);

@@ -69,6 +69,8 @@ enum class Split : std::uint8_t { Train = 0, Regularisation = 1, Test = 2 };
 
 /// "train", "regularisation", "test".
 const char* splitName(Split split);
+/// The split named `name` (train, regularisation or test); InputError naming `context` otherwise.
+Split splitFromName(const std::string& name, const std::string& context);
 
 /// The split of every sample index in [0, count): a seeded Fisher-Yates shuffle of 0..count-1 (mt19937_64, the same
 /// on every platform) whose first round(0.8 count) entries are train, the next round(0.1 count) regularisation and
@@ -173,6 +175,9 @@ struct DatasetInfo {
   SplitCounts counts;
   /// Readable multi-line summary: garment, body, source, samples and shard, splits, stats, rejections.
   std::string summary() const;
+  /// The row of sample index `sample` in this folder's arrays; InputError "<what> <sample>: <folder> holds samples
+  /// <first> to <last>" for a sample it does not hold (`what` names the option, e.g. "predict --samples").
+  int rowOfSample(int sample, const std::string& what) const;
 };
 
 /// Reads manifest.json of `folder`; throws `InputError` naming the file and field when it is missing or malformed.
@@ -214,6 +219,20 @@ Dataset openDataset(const std::filesystem::path& folder);
 body::Body loadDatasetBody(const std::filesystem::path& folder);
 garment::Embedding loadDatasetEmbedding(const std::filesystem::path& folder, int numBodyFaces);
 Eigen::MatrixX3d loadDatasetRestPositions(const std::filesystem::path& folder, int vertexCount);
+
+/// A garment dressed on a body, as a dressing folder (`pixelcloth dress`) or a dataset holds it.
+struct DressingFiles {
+  body::Body body;
+  Eigen::MatrixX3d rest;         ///< #V x 3: the relaxed rest positions on the body
+  garment::Embedding embedding;  ///< #V cloth pixels in the body's triangles
+};
+
+/// The body, rest positions and embedding of a dressing folder or dataset `folder`, checked against `garment`: throws
+/// InputError naming the file when its rest positions or embedding hold another vertex count (the dressing is of
+/// another garment) or when a file is missing or damaged. `garmentSource` names where `garment` came from for that
+/// message (e.g. "the markers (m.json)"); empty: the garment alone.
+DressingFiles loadDressingFiles(const std::filesystem::path& folder, const garment::Garment& garment,
+                                const std::string& garmentSource = "");
 
 /// The garment the dataset was made with, read from its garment/ folder (garment::loadGarment; checksums verified
 /// first): a template or an imported garment alike. Throws `InputError` when the folder is missing or damaged, or when

@@ -16,6 +16,12 @@
 
 namespace pixelcloth::learn {
 
+/// The image loss on the padded UV mask: masked L1 (the paper's choice, Sec. 5.1) or L2.
+enum class ImageLoss { L1, L2 };
+const char* imageLossName(ImageLoss loss);  ///< "l1", "l2"
+/// The loss named `name`; InputError naming `context` otherwise.
+ImageLoss imageLossFromName(const std::string& name, const std::string& context);
+
 /// Settings of train().
 struct TrainOptions {
   /// The architecture and width; train() fills the input size (pose, plus marker features in residual mode) and, for
@@ -24,7 +30,7 @@ struct TrainOptions {
   /// Patch decoders: which patches to train (ids; empty: all). Each goes to its own patch_NN/ folder of `out`, so runs
   /// with different subsets (a job array) fill one model folder.
   std::vector<int> patches;
-  std::string loss = "l1";  ///< "l1" (the paper's) or "l2", masked to the padded UV mask
+  ImageLoss loss = ImageLoss::L1;
   /// What the values mean; the default (unset) is the garment's (garment::GarmentTraits::rootFrameOffsets): the
   /// paper's root frame for the necktie, local frames otherwise.
   std::optional<OffsetSpace> space;
@@ -44,7 +50,6 @@ struct TrainOptions {
   /// Patch decoders: how many networks train at once, each on one thread (the threads above shared out); 0: one
   /// per thread when there are two or more networks. 1: one after another, each on all the threads.
   int networksAtOnce = 0;
-  bool quiet = false;       ///< no progress on stderr
   void validate() const;
 };
 

@@ -36,8 +36,8 @@ struct TrainingData {
 
   int rows() const { return static_cast<int>(values.size()); }
   bool residual() const { return !baseFolder.empty(); }
-  /// The rows of a split by name: "train", "regularisation", "test"; InputError otherwise.
-  const std::vector<int>& split(const std::string& name) const;
+  /// The rows of a split.
+  const std::vector<int>& split(data::Split which) const;
 };
 
 /// Reads a finished dataset (and, when `baseFolder` is not empty, its base folder, checked against it) into the

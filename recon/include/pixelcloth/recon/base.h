@@ -29,12 +29,9 @@ struct BaseSetOptions {
   cage::MarkerOptions markers;   ///< where the markers are
   cage::CaptureOptions capture;  ///< noise (metres) and dropout of the markers, seeded per sample
   ReconstructionOptions reconstruction;
-  /// "fit" (on the dataset's training split; with no training samples, none), "none" (rest lengths), or a length model
-  /// file. Overrides reconstruction.lengthModel.
-  std::string lengthModel = "fit";
+  LengthModelSource lengthModel;  ///< overrides reconstruction.lengthModel
   cage::LengthModelOptions lengthModelFit;
   int threads = 1;  ///< samples rebuilt at once, in [1, 256]
-  bool quiet = false;
   void validate() const;
 };
 
@@ -57,7 +54,7 @@ struct BaseSetReport {
 /// base folder `out` (data::writeBaseSet) with settings: method, marker_spacing_m, marker_names (the definition's
 /// order, that of the features), noise_cm, dropout, seed, body_clearance_m, rest_lengths, marker_sigma_m, anisotropic
 /// and length_model ("none" or {"source", "samples", "model": the model as cage::toJson writes it}, so a new capture
-/// can be rebuilt the same way). Progress on stderr unless quiet. Throws InputError for a bad dataset folder or
+/// can be rebuilt the same way). Progress on stderr. Throws InputError for a bad dataset folder or
 /// options.
 BaseSetReport writeDatasetBases(const std::filesystem::path& dataset, const std::filesystem::path& out,
                                 const BaseSetOptions& options = {});

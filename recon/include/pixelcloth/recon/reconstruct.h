@@ -17,6 +17,7 @@
 #include "pixelcloth/cage/markers.h"
 #include "pixelcloth/cage/spline_solver.h"
 #include "pixelcloth/core/image.h"
+#include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/embedding.h"
 #include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/basis.h"
@@ -126,19 +127,31 @@ class GarmentReconstructor {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Where the spline's worn-length model (the paper's Sec. 4.1 arc lengths, learned) comes from on a dataset.
+struct LengthModelSource {
+  enum class Kind {
+    Fit,   ///< fitted on the dataset's train split (with no training samples: none)
+    None,  ///< rest lengths
+    File   ///< a length model file an earlier run wrote
+  };
+  Kind kind = Kind::Fit;
+  std::filesystem::path file;  ///< Kind::File
+
+  static LengthModelSource fit() { return {}; }
+  static LengthModelSource none() { return {Kind::None, {}}; }
+  static LengthModelSource fromFile(std::filesystem::path path) { return {Kind::File, std::move(path)}; }
+};
+
 /// Settings of reconstructDataset.
 struct DatasetReconstructionOptions {
-  std::string split = "test";    ///< "train", "regularisation", "test" or "all"
+  std::optional<data::Split> split = data::Split::Test;  ///< the rows rebuilt; none: every row
   cage::MarkerOptions markers;   ///< where the markers are
   cage::CaptureOptions capture;  ///< noise (metres) and dropout of the markers, seeded per sample
   ReconstructionOptions reconstruction;
   int meshes = 3;  ///< the first this many samples are written as OBJ (truth and each method)
-  /// The spline's length model: "fit" (on the dataset's training split, written to length_model.json; with no
-  /// training samples, none), "none" (rest lengths), or a length model file (from an earlier run). Overrides
-  /// reconstruction.lengthModel.
-  std::string lengthModel = "fit";
+  /// The spline's length model (a fitted one is written to length_model.json). Overrides reconstruction.lengthModel.
+  LengthModelSource lengthModel;
   cage::LengthModelOptions lengthModelFit;
-  bool quiet = false;
   void validate() const;
 };
 
@@ -157,7 +170,7 @@ struct DatasetReconstructionReport {
 /// Reconstructs every sample of one split of a finished dataset folder from markers taken from its ground truth, by
 /// every method, and writes into `out`: metrics.json, markers.json (the marker definition), length_model.json (when one
 /// is used) and OBJs of the first few samples (sample_NNNNNN/truth.obj, <method>.obj); the error maps are viz's
-/// (viz::renderReconstructionErrors of the report). Progress on stderr unless quiet. Throws InputError for a bad
+/// (viz::renderReconstructionErrors of the report). Progress on stderr. Throws InputError for a bad
 /// folder, an empty split or options.
 DatasetReconstructionReport reconstructDataset(const std::filesystem::path& dataset, const std::filesystem::path& out,
                                                const DatasetReconstructionOptions& options = {});

@@ -25,7 +25,6 @@ struct GenerateOptions {
   int maxAttempts = 50;           ///< draws per sample before giving up (InputError)
   double mannequinEdge = 0.0075;  ///< mannequin triangle size (tests use coarser bodies)
   SimulationOptions simulation;
-  bool quiet = false;
   void validate() const;
 };
 
@@ -46,16 +45,15 @@ struct GenerateReport {
 
 /// Makes (or resumes) a dataset folder: builds or loads the body, builds the garment, dresses it, settles it, then
 /// simulates every pending sample of the shard on `threads` threads, each pose drawn by `samplePose` and redrawn
-/// (next attempt) while the simulation rejects it; progress with rate and ETA on stderr unless quiet. Ends with the
-/// finished folder (sim/dataset.h, docs/dataset.md).
+/// (next attempt) while the simulation rejects it; progress with rate and ETA on stderr (core::Progress, silent below
+/// the Info log level). Ends with the finished folder (sim/dataset.h, docs/dataset.md).
 GenerateReport generateDataset(const std::filesystem::path& out, const GenerateOptions& options);
 
 /// Simulates `garment` (dressed by `dressing`) on `body` in every one of `poses` on `threads` threads (0: one per
-/// core), with progress on stderr unless `quiet`: each pose's statistics, rejection included, in the order given.
+/// core), with progress on stderr: each pose's statistics, rejection included, in the order given.
 /// No pose is redrawn: for rejection rates over a fixed set of poses.
 std::vector<data::SampleStats> simulatePoses(const body::Body& body, const garment::Garment& garment,
                                              const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
-                                             const SimulationOptions& options = {}, int threads = 0,
-                                             bool quiet = false);
+                                             const SimulationOptions& options = {}, int threads = 0);
 
 }  // namespace pixelcloth::sim

@@ -37,6 +37,7 @@ std::vector<Eigen::MatrixX3d> separatePositions(const std::vector<learn::Network
 
 /// What evaluate() measured for one stitch mode.
 struct Evaluation {
+  StitchMode mode;  ///< how the predictions were stitched (the plain mean when evaluate() was given no stitcher)
   /// {"split", "samples", "stitch" (the mode's name), "vertex_error_cm", "max_vertex_error_cm", "normal_cosine" (mean
   /// cosine between predicted and true per-vertex normals), "normal_cosine_distance" (1 - that),
   /// "base_vertex_error_cm" (residual mode: the marker reconstruction alone; null otherwise), "patches": [{"id",
@@ -49,7 +50,11 @@ struct Evaluation {
 
 /// Predicts every row of `split` once and compares each of `stitchers` (empty: the plain mean) with ground truth; one
 /// Evaluation per stitcher, in order. Throws InputError for an empty split.
-std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::TrainingData& data,
-                                 const std::string& split, const std::vector<const Stitcher*>& stitchers = {});
+std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::TrainingData& data, data::Split split,
+                                 const std::vector<const Stitcher*>& stitchers = {});
+
+/// The pca:K evaluation with the lowest mean vertex error: the k chosen on the split `evaluations` measured (the
+/// regularisation split, to report the test split at that k). -1 when none is a pca:K mode.
+int bestPcaMode(const std::vector<Evaluation>& evaluations);
 
 }  // namespace pixelcloth::stitch

@@ -37,7 +37,6 @@ struct GanOptions {
   double l1Weight = 1000;
   std::uint64_t seed = 0;       ///< initial weights, dropout and the order of the train split in each epoch
   int threads = 0;              ///< LibTorch's intra-op threads; 0: one per core
-  bool quiet = false;           ///< no progress on stderr
   /// Throws InputError naming the field that is out of range.
   void validate() const;
 };

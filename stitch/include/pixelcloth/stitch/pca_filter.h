@@ -55,4 +55,12 @@ class PcaFilter {
 /// Where `pca:K` looks when no folder is given: the model folder's pca/ subfolder.
 std::filesystem::path defaultPcaFolder(const std::filesystem::path& modelFolder);
 
+/// The PCA filter a model's predictions on `data` are stitched with. Given a `folder`, its filter, checked against
+/// `data` (its garment and space alone when `data` holds one pose and no training rows). Otherwise the model folder's
+/// defaultPcaFolder when that was fitted on this dataset with `rank` components (0: any rank), else one fitted here on
+/// the train split with `rank` and saved there for the next run. Throws InputError for a filter of other data, or
+/// when a fit is needed and `data` has no training rows.
+PcaFilter loadOrFitPcaFilter(const learn::TrainingData& data, const std::filesystem::path& modelFolder,
+                             const std::filesystem::path& folder = {}, int rank = 0);
+
 }  // namespace pixelcloth::stitch

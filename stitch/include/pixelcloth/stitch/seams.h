@@ -23,7 +23,7 @@ struct PredictedPositions {
 /// The cage curves of a garment as the seam metrics see them (cage::garmentCage), built once.
 struct SeamCurve {
   std::string name;
-  std::string kind;           ///< cage::curveKindName: seam, loop, centre_line, opening, split
+  garment::CurveKind kind = garment::CurveKind::Seam;
   std::vector<int> vertices;  ///< the curve's garment vertices
   /// Per mesh edge of the curve with a triangle on either side: the two faces. Edges on the garment's border (the
   /// openings) have one triangle and no fold angle.

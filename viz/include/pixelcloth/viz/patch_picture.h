@@ -10,13 +10,12 @@
 
 namespace pixelcloth::viz {
 
-/// A curve to draw over the patches: a chain of garment vertices and its kind. Plain data, so that patches/ need not
-/// depend on cage/ (DESIGN.md's module order): a caller with a `cage::Cage` passes each curve's vertices, closedness
-/// and `cage::curveKindName(kind)`.
+/// A curve to draw over the patches: a chain of garment vertices and its kind (a cage curve's, or a garment's seam or
+/// pattern line).
 struct PictureCurve {
   std::vector<int> vertices;
   bool closed = false;
-  std::string kind;  ///< "seam" | "loop" | "centre_line" | "opening" | "split"; anything else is drawn grey
+  garment::CurveKind kind = garment::CurveKind::Seam;
 };
 
 /// Picture of a garment's patches: every layout in its own `size` x `size` cloth-image frame (layoutFrame), side by

@@ -42,9 +42,6 @@ core::RgbImage renderPcaSweep(const std::vector<stitch::Evaluation>& evaluations
 core::RgbImage renderWorstSeams(const garment::Garment& garment, const SeamExample& example, double maxErrorCm,
                                 int panelSize = 360);
 
-/// The pca:K mode with the lowest vertex error among `evaluations`; -1 when there is none.
-int bestPcaMode(const std::vector<stitch::Evaluation>& evaluations);
-
 /// A JSON number as text with `digits` decimals, "-" for null (a figure that does not apply): for tables and logs.
 std::string figureText(const nlohmann::json& value, int digits = 3);
 

@@ -1,0 +1,26 @@
+#pragma once
+
+// The speed goals, measured end to end (`pixelcloth bench`; docs/bench.md): each figure is one JSON object
+// {"name", "value", "unit", "goal"}, lower is better unless it says "higher_is_better"; some carry a "bar" (the figure
+// it must not miss) and the learned path's the same run's sgemm peak ("peak_gflops"), since speed goals on a shared
+// machine are fractions of a peak measured beside them.
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace pixelcloth::bench {
+
+/// The suites: body to simulation and files; the decoders at the paper's width; the PCA filter's fit.
+enum class Suite { Procedural, Learn, Stitch };
+const char* suiteName(Suite suite);                                        ///< "procedural", "learn", "stitch"
+Suite suiteFromName(const std::string& name, const std::string& context);  ///< InputError naming `context` otherwise
+
+/// Receives each figure as soon as it is measured.
+using FigureSink = std::function<void(const nlohmann::ordered_json& figure)>;
+
+/// Measures `suite`, the median of `repeats` runs (1 to 100) per figure, handing each figure to `sink`. Notes on
+/// what was measured go to stderr.
+void runSuite(Suite suite, int repeats, const FigureSink& sink);
+
+}  // namespace pixelcloth::bench

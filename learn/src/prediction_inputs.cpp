@@ -1,0 +1,78 @@
+#include "pixelcloth/learn/prediction_inputs.h"
+
+#include <cmath>
+
+#include "pixelcloth/core/error.h"
+#include "pixelcloth/data/dataset.h"
+#include "pixelcloth/garment/embedding.h"
+
+namespace pixelcloth::learn {
+
+namespace fs = std::filesystem;
+
+namespace {
+/// The model folder's model, for the garment of `info`'s dataset, checked against it.
+std::unique_ptr<TrainedModel> modelFor(const fs::path& modelFolder, const data::DatasetInfo& info, Engine engine) {
+  auto model = std::make_unique<TrainedModel>(modelFolder, data::datasetGarment(info), engine);
+  model->checkDataset(info);
+  return model;
+}
+}  // namespace
+
+PredictionInputs datasetPredictionInputs(const fs::path& modelFolder, const fs::path& dataset, const fs::path& base,
+                                         Engine engine) {
+  const data::DatasetInfo info = data::readDatasetInfo(dataset);
+  PredictionInputs out;
+  out.model = modelFor(modelFolder, info, engine);
+  PIXELCLOTH_CHECK(base.empty() || out.model->residual(),
+                   "--base " << base.string() << ": the model in " << modelFolder.string()
+                             << " is not a residual model (it takes the pose alone)");
+  const fs::path baseFolder = out.model->residual() ? (base.empty() ? out.model->baseFolder() : base) : fs::path();
+  out.data = loadTrainingData(dataset, out.model->space(), baseFolder);
+  return out;
+}
+
+PredictionInputs posePredictionInputs(const fs::path& modelFolder, const body::Pose& pose, const std::string& poseName,
+                                      const fs::path& datasetArg, Engine engine) {
+  const fs::path dataset = datasetArg.empty() ? trainingDatasetOf(modelFolder) : datasetArg;
+  const data::DatasetInfo info = data::readDatasetInfo(dataset);
+  PredictionInputs out;
+  out.model = modelFor(modelFolder, info, engine);
+  TrainingData& data = out.data;
+  data.folder = dataset;
+  data.info = info;
+  data.garment = data::datasetGarment(info);
+  data.space = out.model->space();
+  data.poseSize = out.model->poseSize();
+  const Eigen::VectorXf full = pose.toVector();
+  const Eigen::VectorXf vector = full.head(data.poseSize);
+  const int rest = body::kPoseSize - data.poseSize;
+  PIXELCLOTH_CHECK(rest == 0 || full.tail(rest).isApprox(body::Pose::fromLeading(vector).toVector().tail(rest)),
+                   poseName << ": the " << data.garment.name << " model takes the first " << data.poseSize
+                            << " pose floats; this pose also turns later joints");
+  const body::Body body = data::loadDatasetBody(dataset);
+  const garment::Embedding embedding = data::loadDatasetEmbedding(dataset, body.mesh.F.rows());
+  data.frames.push_back(
+      garment::embeddedFrames(body.posedVertices(body::Pose::fromLeading(vector)), body.mesh.F, embedding));
+  const int V = data.garment.mesh.numVertices();
+  data.truth.push_back(Eigen::MatrixXf::Constant(V, 3, std::nanf("")));
+  data.values.push_back(Eigen::MatrixXf::Zero(V, 3));
+  data.inputs = vector.transpose();
+  data.test = {0};
+  return out;
+}
+
+void addPoseBase(PredictionInputs& inputs, const Eigen::MatrixX3d& baseOffsets, const Eigen::VectorXd& features) {
+  TrainingData& data = inputs.data;
+  PIXELCLOTH_CHECK(inputs.model->residual() && data.rows() == 1 && data.base.empty(),
+                   "addPoseBase: a residual model's one pose row without its base expected");
+  data.baseFolder = inputs.model->baseFolder();
+  data.markers = static_cast<int>(features.size() / 3);
+  data.base.push_back(
+      valuesInSpace(data.space, data.frames.front(), garment::positionsFromOffsets(data.frames.front(), baseOffsets)));
+  const Eigen::RowVectorXf pose = data.inputs.row(0);
+  data.inputs.resize(1, pose.size() + features.size());
+  data.inputs << pose, features.transpose().cast<float>();
+}
+
+}  // namespace pixelcloth::learn

@@ -148,14 +148,6 @@ std::string cnnFlags(const ExperimentPlan& plan) {
   return flags.str();
 }
 
-/// mean, pca:1, pca:2, pca:4, ... and pca:rank.
-std::vector<stitch::StitchMode> pcaSweep(int rank) {
-  std::vector<stitch::StitchMode> modes(1);
-  for (int k = 1; k < rank; k *= 2) modes.push_back({stitch::StitchKind::Pca, k, {}});
-  modes.push_back({stitch::StitchKind::Pca, rank, {}});
-  return modes;
-}
-
 }  // namespace
 
 const char* scaleName(Scale scale) { return kScales.name(scale); }
@@ -280,7 +272,7 @@ ExperimentResults runExperiments(const ExperimentPlan& plan, const fs::path& out
     if (!fs::is_regular_file(ganFolder / "model.tensors")) stitch::trainGan(*inputs.model, inputs.data, gan, ganFolder);
     run.command("pixelcloth train --model gan --patch-model models/patch_l1 --dataset data/tshirt --epochs " +
                 std::to_string(plan.ganEpochs) + " --out models/gan");
-    std::vector<stitch::StitchMode> modes = pcaSweep(results.pcaRank);
+    std::vector<stitch::StitchMode> modes = stitch::pcaSweepModes(results.pcaRank);
     modes.push_back({stitch::StitchKind::Gan, 0, ganFolder});
     std::vector<stitch::Stitcher> stitchers;
     for (const stitch::StitchMode& mode : modes) stitchers.emplace_back(inputs.data.garment, mode, pca);

@@ -16,6 +16,13 @@ std::string StitchMode::name() const {
   return "unknown";
 }
 
+std::vector<StitchMode> pcaSweepModes(int rank) {
+  std::vector<StitchMode> modes(1);
+  for (int k = 1; k < rank; k *= 2) modes.push_back({StitchKind::Pca, k, {}});
+  modes.push_back({StitchKind::Pca, rank, {}});
+  return modes;
+}
+
 StitchMode parseStitchMode(const std::string& text, const std::string& context) {
   StitchMode mode;
   if (text == "mean") return mode;

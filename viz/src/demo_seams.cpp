@@ -115,9 +115,7 @@ void demoSeams(Report& report, const body::Body& body, const DemoOptions& demo) 
     auto pca = std::make_shared<stitch::PcaFilter>(stitch::PcaFilter::fit(data));
     pca->save(stitch::defaultPcaFolder(patchFolder));
     std::vector<stitch::Stitcher> sweep;
-    sweep.emplace_back(shirt, stitch::parseStitchMode("mean", "demo"));
-    for (int k = 1; k < pca->rank(); k *= 2) sweep.emplace_back(shirt, stitch::parseStitchMode("pca:" + std::to_string(k), "demo"), pca);
-    sweep.emplace_back(shirt, stitch::parseStitchMode("pca:" + std::to_string(pca->rank()), "demo"), pca);
+    for (const stitch::StitchMode& mode : stitch::pcaSweepModes(pca->rank())) sweep.emplace_back(shirt, mode, pca);
     std::vector<const stitch::Stitcher*> modes;
     for (const stitch::Stitcher& s : sweep) modes.push_back(&s);
     const std::vector<stitch::Evaluation> chosenOn = stitch::evaluate(model, data, data::Split::Regularisation, modes);

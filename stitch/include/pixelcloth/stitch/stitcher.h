@@ -32,6 +32,8 @@ struct StitchMode {
 StitchMode parseStitchMode(const std::string& text, const std::string& context);
 /// Parses a comma-separated list ("mean,feather,pca:64"); at least one.
 std::vector<StitchMode> parseStitchModes(const std::string& text, const std::string& context);
+/// The PCA filter's sweep over k: mean, then pca:1, pca:2, pca:4, ... below `rank`, and pca:rank.
+std::vector<StitchMode> pcaSweepModes(int rank);
 
 class Stitcher {
  public:

@@ -33,7 +33,7 @@ struct DatasetArgs {
 };
 
 void runInfo(const DatasetArgs& args) {
-  const data::DatasetInfo info = data::readDatasetInfo(args.folder);
+  const data::DatasetInfo info = data::readDatasetInfo(datasetFolder(args.folder));
   if (args.json) {
     nlohmann::json summary = info.manifest;
     summary.erase("checksums");
@@ -80,7 +80,7 @@ void runImport(const DatasetArgs& args) {
   nlohmann::json bodyDescription;
   if (!args.dressing.empty()) {
     const std::filesystem::path dressingFolder(args.dressing);
-    data::DressingFiles dressed = data::loadDressingFiles(dressingFolder, garment);
+    data::DressingFiles dressed = data::loadDressingFiles(datasetFolder(dressingFolder), garment);
     body = std::move(dressed.body);
     rest = std::move(dressed.rest);
     embedding = std::move(dressed.embedding);
@@ -112,7 +112,7 @@ void runRebase(const DatasetArgs& args) {
   const body::Body body = body::loadBody(bodyFolder);
   const nlohmann::json description = {{"kind", "folder"},
                                       {"path", std::filesystem::absolute(bodyFolder).lexically_normal().string()}};
-  const data::DatasetSettings settings = data::rebaseDataset(args.folder, body, description, args.out);
+  const data::DatasetSettings settings = data::rebaseDataset(datasetFolder(args.folder), body, description, args.out);
   std::cout << "rebased " << settings.rows() << " samples onto " << args.body << " -> " << args.out << '\n';
 }
 

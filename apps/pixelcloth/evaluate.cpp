@@ -45,7 +45,7 @@ void writeReport(const EvaluateArgs& args, const learn::PredictionInputs& inputs
   std::vector<size_t> shown = {0};
   if (best > 0) shown.push_back(static_cast<size_t>(best));
   else if (stitchers.size() > 1) shown.push_back(1);
-  const body::Body body = data::loadDatasetBody(data.folder);
+  const body::Body body = data::loadDatasetBody(data.info.where());
   body::Body posed = body;
   posed.mesh.V = body.posedVertices(body::Pose::fromLeading(data.inputs.row(row).head(data.poseSize).transpose()));
   for (size_t m : shown) {
@@ -59,8 +59,8 @@ void writeReport(const EvaluateArgs& args, const learn::PredictionInputs& inputs
 
 void runEvaluate(const EvaluateArgs& args) {
   core::checkOutputFolder(args.out);
-  const learn::PredictionInputs inputs = learn::datasetPredictionInputs(args.model, args.dataset, args.base,
-                                                                        learn::engineFromName(args.engine, "--engine"));
+  const learn::PredictionInputs inputs = learn::datasetPredictionInputs(
+      args.model, datasetFolder(args.dataset), args.base, learn::engineFromName(args.engine, "--engine"));
   const std::vector<stitch::Stitcher> stitchers = makeStitchers(args.stitch, inputs);
   std::vector<const stitch::Stitcher*> modes;
   for (const stitch::Stitcher& s : stitchers) modes.push_back(&s);

@@ -42,7 +42,7 @@ void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& 
                                                               << ": a dataset carries its garment; leave out --garment");
   PIXELCLOTH_CHECK(args.all != !args.samples.empty(), "images: with --dataset give --samples i,j,... or --all");
   checkOutputFolder(args.out);
-  const data::Dataset dataset = data::openDataset(args.dataset);
+  const data::Dataset dataset = data::openDataset(datasetFolder(args.dataset));
   const data::DatasetSettings& settings = dataset.info.settings;
   std::vector<int> indices = args.samples;
   if (args.all)

@@ -12,9 +12,13 @@
 
 namespace {
 pixelcloth::body::BeyondLimits beyondLimits = pixelcloth::body::BeyondLimits::Refuse;
+pixelcloth::data::Checksums datasetChecksums = pixelcloth::data::Checksums::Verify;
 }  // namespace
 
 pixelcloth::body::BeyondLimits pixelcloth::apps::poseLimits() { return beyondLimits; }
+pixelcloth::data::DatasetFolder pixelcloth::apps::datasetFolder(const std::filesystem::path& path) {
+  return {path, datasetChecksums};
+}
 
 int main(int argc, char** argv) {
   CLI::App app{"pixelcloth: data-driven garments in pattern space (pixel-based cloth)", "pixelcloth"};
@@ -31,7 +35,7 @@ int main(int argc, char** argv) {
                "instead of refusing the file");
   app.parse_complete_callback([&] {
     pixelcloth::core::setLogLevel(quiet ? pixelcloth::core::LogLevel::Warning : pixelcloth::core::LogLevel::Info);
-    pixelcloth::data::setVerifyDatasetFiles(!noVerify);
+    datasetChecksums = noVerify ? pixelcloth::data::Checksums::Skip : pixelcloth::data::Checksums::Verify;
     beyondLimits = clampToLimits ? pixelcloth::body::BeyondLimits::Clamp : pixelcloth::body::BeyondLimits::Refuse;
   });
 

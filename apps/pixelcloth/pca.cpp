@@ -22,8 +22,8 @@ void runPca(const PcaArgs& args) {
   if (args.quiet) core::setLogLevel(core::LogLevel::Warning);
   core::checkOutputFolder(args.out);
   const learn::PcaMethod method = learn::pcaMethodFromName(args.method, "--method");
-  const learn::TrainingData data =
-      learn::loadTrainingData(args.dataset, learn::offsetSpaceFromName(args.space, "--space"), args.base);
+  const learn::TrainingData data = learn::loadTrainingData(
+      datasetFolder(args.dataset), learn::offsetSpaceFromName(args.space, "--space"), args.base);
   const stitch::PcaFilter filter = stitch::PcaFilter::fit(data, args.rank, method);
   filter.save(args.out);
   const Eigen::VectorXf& variance = filter.basis().variance;

@@ -52,8 +52,9 @@ void runPredict(const PredictArgs& args) {
   core::checkOutputFolder(args.out);
   const learn::Engine engine = learn::engineFromName(args.engine, "--engine");
   const learn::PredictionInputs inputs =
-      args.pose.empty() ? learn::datasetPredictionInputs(args.model, args.dataset, args.base, engine)
-                        : posePredictionInputs(args.model, args.pose, args.markers, args.dataset, engine);
+      args.pose.empty()
+          ? learn::datasetPredictionInputs(args.model, datasetFolder(args.dataset), args.base, engine)
+          : posePredictionInputs(args.model, args.pose, args.markers, datasetFolder(args.dataset), engine);
   std::vector<int> rows;
   for (int sample : args.samples) {
     const int row = inputs.data.info.rowOfSample(sample, "predict --samples");

@@ -50,7 +50,7 @@ std::vector<stitch::Stitcher> makeStitchers(const StitchArgs& args, const learn:
 }
 
 learn::PredictionInputs posePredictionInputs(const fs::path& modelFolder, const fs::path& posePath,
-                                             const fs::path& markersPath, const fs::path& dataset,
+                                             const fs::path& markersPath, const data::DatasetFolder& dataset,
                                              learn::Engine engine) {
   const body::Pose pose = body::readPose(posePath, poseLimits());
   learn::PredictionInputs out = learn::posePredictionInputs(modelFolder, pose, posePath.string(), dataset, engine);
@@ -59,7 +59,7 @@ learn::PredictionInputs posePredictionInputs(const fs::path& modelFolder, const 
                                                                     << " is a residual model: give the garment's "
                                                                        "markers too (--markers M.json)");
     const body::Pose leading = body::Pose::fromLeading(out.data.inputs.row(0).transpose());
-    const recon::CaptureBase base = recon::baseOfCapture(out.model->baseFolder(), out.data.folder,
+    const recon::CaptureBase base = recon::baseOfCapture(out.model->baseFolder(), out.data.info.where(),
                                                          cage::readMarkers(markersPath), leading, markersPath.string());
     learn::addPoseBase(out, base.offsets, base.features);
   } else {

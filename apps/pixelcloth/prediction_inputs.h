@@ -17,7 +17,7 @@ namespace pixelcloth::apps {
 learn::PredictionInputs posePredictionInputs(const std::filesystem::path& modelFolder,
                                              const std::filesystem::path& posePath,
                                              const std::filesystem::path& markersPath,
-                                             const std::filesystem::path& dataset, learn::Engine engine);
+                                             const data::DatasetFolder& dataset, learn::Engine engine);
 
 /// Adds `--engine onednn|libtorch` (which runs the networks) to a verb.
 void addEngineOption(CLI::App& verb, std::string& engine);

@@ -53,7 +53,7 @@ void runMarkers(const MarkersArgs& args) {
     PIXELCLOTH_INFO("markers: " << garment.name << " marker definition -> " << args.out);
     return;
   }
-  const data::Dataset dataset = data::openDataset(args.dataset);
+  const data::Dataset dataset = data::openDataset(datasetFolder(args.dataset));
   const int row = dataset.info.rowOfSample(args.sample, "markers --sample");
   const garment::Garment garment = data::datasetGarment(dataset.info);
   const cage::MarkerSet definition = cage::defineMarkers(garment, cage::garmentCage(garment), options);
@@ -123,7 +123,8 @@ void runFromMarkers(const ReconstructArgs& args) {
   Eigen::MatrixX3d rest;
   garment::Embedding embedding;
   if (!args.dressing.empty()) {
-    data::DressingFiles dressed = data::loadDressingFiles(args.dressing, garment, "the markers (" + args.markers + ")");
+    data::DressingFiles dressed =
+        data::loadDressingFiles(datasetFolder(args.dressing), garment, "the markers (" + args.markers + ")");
     body = std::move(dressed.body);
     rest = std::move(dressed.rest);
     embedding = std::move(dressed.embedding);
@@ -180,9 +181,11 @@ void runFromDataset(const ReconstructArgs& args) {
   options.reconstruction = datasetReconstructionOptions(args);
   options.lengthModel = lengthModelSource(args.lengthModel);
   options.meshes = args.meshes;
-  const recon::DatasetReconstructionReport report = recon::reconstructDataset(args.dataset, args.out, options);
+  const recon::DatasetReconstructionReport report =
+      recon::reconstructDataset(datasetFolder(args.dataset), args.out, options);
   core::writePng(std::filesystem::path(args.out) / "error_maps.png",
-                 viz::renderReconstructionErrors(data::datasetGarment(data::readDatasetInfo(args.dataset)), report));
+                 viz::renderReconstructionErrors(
+                     data::datasetGarment(data::readDatasetInfo(datasetFolder(args.dataset))), report));
   for (const auto& [name, m] : report.metrics["methods"].items())
     std::cout << name << ": cage " << m["cage_cm"].get<double>() << " cm, garment " << m["garment_cm"].get<double>()
               << " cm\n";
@@ -210,7 +213,7 @@ void runWriteBase(const ReconstructArgs& args) {
   options.reconstruction = datasetReconstructionOptions(args);
   options.lengthModel = lengthModelSource(args.lengthModel);
   options.threads = args.threads;
-  const recon::BaseSetReport report = recon::writeDatasetBases(args.dataset, args.writeBase, options);
+  const recon::BaseSetReport report = recon::writeDatasetBases(datasetFolder(args.dataset), args.writeBase, options);
   std::cout << "reconstruct: base folder " << args.writeBase << " of " << args.dataset << ": " << report.summary()
             << "\n";
 }

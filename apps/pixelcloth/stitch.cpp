@@ -48,7 +48,7 @@ std::vector<learn::NetworkPrediction> readCrops(const fs::path& folder, const ga
 void runStitch(const StitchVerbArgs& args) {
   PIXELCLOTH_CHECK(args.sample < 0 || args.pose.empty(), "stitch: give --sample or --pose, not both");
   core::checkOutputFolder(args.out);
-  const data::DatasetInfo info = data::readDatasetInfo(args.dataset);
+  const data::DatasetInfo info = data::readDatasetInfo(datasetFolder(args.dataset));
   const garment::Garment garment = data::datasetGarment(info);
   const int V = garment.mesh.numVertices();
   const stitch::StitchMode mode = stitch::parseStitchMode(args.mode, "--mode");
@@ -69,15 +69,15 @@ void runStitch(const StitchVerbArgs& args) {
   body::Pose pose = body::Pose::identity();
   Eigen::MatrixX3d truth;
   if (args.sample >= 0) {
-    const data::Dataset dataset = data::openDataset(args.dataset);
+    const data::Dataset dataset = data::openDataset(datasetFolder(args.dataset));
     const int row = info.rowOfSample(args.sample, "stitch --sample");
     pose = body::Pose::fromLeading(dataset.pose(row));
     truth = dataset.positionsOf(row).cast<double>();
   } else if (!args.pose.empty()) {
     pose = body::readPose(args.pose, poseLimits());
   }
-  const body::Body body = data::loadDatasetBody(args.dataset);
-  const garment::Embedding embedding = data::loadDatasetEmbedding(args.dataset, body.mesh.F.rows());
+  const body::Body body = data::loadDatasetBody(datasetFolder(args.dataset));
+  const garment::Embedding embedding = data::loadDatasetEmbedding(datasetFolder(args.dataset), body.mesh.F.rows());
   const garment::EmbeddedFrames frames = garment::embeddedFrames(body.posedVertices(pose), body.mesh.F, embedding);
 
   const Eigen::MatrixXf stitched = stitcher.refine(stitcher.assemble(crops));

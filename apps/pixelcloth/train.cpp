@@ -66,7 +66,7 @@ void runTrainGan(TrainArgs args, const CLI::App& verb) {
   gan.validate();
   core::checkOutputFolder(args.out);
   const learn::PredictionInputs inputs =
-      learn::datasetPredictionInputs(args.patchModel, args.dataset, {}, learn::Engine::OneDnn);
+      learn::datasetPredictionInputs(args.patchModel, datasetFolder(args.dataset), {}, learn::Engine::OneDnn);
   const stitch::GanReport report = stitch::trainGan(*inputs.model, inputs.data, gan, args.out);
   const stitch::GanEpoch& best = report.epochs[report.bestEpoch - 1];
   std::cout << std::fixed << std::setprecision(3) << "gan: epoch " << best.epoch << " of " << report.epochs.size()
@@ -85,7 +85,7 @@ void runTrain(TrainArgs args, const CLI::App& verb) {
   args.options.patches = parsePatchList(args.patches);
   if (!args.space.empty()) args.options.space = learn::offsetSpaceFromName(args.space, "--space");
   args.options.residual = args.residual;
-  const learn::TrainReport report = learn::train(args.dataset, args.out, args.options);
+  const learn::TrainReport report = learn::train(datasetFolder(args.dataset), args.out, args.options);
   std::cout << std::fixed << std::setprecision(3);
   for (const learn::NetworkReport& n : report.networks) {
     const learn::EpochRecord& best = n.epochs[n.bestEpoch - 1];

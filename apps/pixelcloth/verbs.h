@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "pixelcloth/body/pose_io.h"
+#include "pixelcloth/data/dataset.h"
 
 namespace pixelcloth::apps {
 
@@ -15,6 +16,9 @@ inline constexpr const char* kGarmentHelp =
 /// What the program-wide --clamp-to-limits asks of every pose file a verb reads (body::readPose), set once the
 /// command line is parsed.
 body::BeyondLimits poseLimits();
+
+/// The dataset folder `path`, read as the program-wide --no-verify asks (checksums verified unless it is given).
+data::DatasetFolder datasetFolder(const std::filesystem::path& path);
 
 /// Each verb lives in its own file and adds one subcommand to the `pixelcloth` app. The callback
 /// runs the verb; it throws `core::InputError` for bad input (exit code 2).

@@ -1,6 +1,5 @@
 // Reading and verifying finished dataset folders.
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -21,7 +20,8 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace detail;
 
-DatasetInfo readDatasetInfo(const fs::path& folder) {
+DatasetInfo readDatasetInfo(const DatasetFolder& where) {
+  const fs::path& folder = where.path;
   std::error_code ec;
   PIXELCLOTH_CHECK(fs::is_directory(folder, ec), folder.string() << ": no such dataset folder");
   const fs::path path = folder / kManifest;
@@ -34,6 +34,7 @@ DatasetInfo readDatasetInfo(const fs::path& folder) {
   const std::string file = path.string();
   DatasetInfo info;
   info.folder = folder;
+  info.checksums = where.checksums;
   info.manifest = core::readJson(path);
   const json& m = info.manifest;
   PIXELCLOTH_CHECK(m.is_object(), file << ": expected a JSON object");
@@ -136,24 +137,19 @@ std::vector<int> Dataset::rowsOf(Split which) const {
 }
 
 namespace {
-std::atomic<bool> verifyFiles{true};
-
 /// Verifies every file the manifest of `folder` lists whose name starts with `prefix` ("body/", "embedding"). A
 /// folder without manifest.json (a dressing folder: body/, embedding and rest positions only) has nothing to check.
-void verifyFilesStartingWith(const fs::path& folder, const std::string& prefix) {
+void verifyFilesStartingWith(const DatasetFolder& folder, const std::string& prefix) {
   std::error_code ec;
-  if (!verifyDatasetFiles() || !fs::is_regular_file(folder / kManifest, ec)) return;
+  if (folder.checksums == Checksums::Skip || !fs::is_regular_file(folder.path / kManifest, ec)) return;
   const DatasetInfo info = readDatasetInfo(folder);
   for (const auto& [name, entry] : info.manifest["checksums"].items())
     if (name.rfind(prefix, 0) == 0) verifyDatasetFile(info, name);
 }
 }  // namespace
 
-void setVerifyDatasetFiles(bool verify) { verifyFiles = verify; }
-bool verifyDatasetFiles() { return verifyFiles; }
-
 void verifyDatasetFile(const DatasetInfo& info, const std::string& name) {
-  if (!verifyDatasetFiles()) return;
+  if (info.checksums == Checksums::Skip) return;
   const json& checksums = info.manifest["checksums"];
   if (!checksums.contains(name)) return;
   const fs::path path = info.folder / name;
@@ -168,9 +164,10 @@ void verifyDatasetFile(const DatasetInfo& info, const std::string& name) {
                                                   << " (the file is damaged or was changed; --no-verify reads it anyway)");
 }
 
-Dataset openDataset(const fs::path& folder) {
+Dataset openDataset(const DatasetFolder& where) {
+  const fs::path& folder = where.path;
   Dataset d;
-  d.info = readDatasetInfo(folder);
+  d.info = readDatasetInfo(where);
   for (const char* name : {kPoses, kPositions, kOffsets, kSplit}) verifyDatasetFile(d.info, name);
   const DatasetSettings& s = d.info.settings;
   const std::int64_t rows = s.rows(), V = s.vertexCount;
@@ -188,25 +185,25 @@ Dataset openDataset(const fs::path& folder) {
   return d;
 }
 
-body::Body loadDatasetBody(const fs::path& folder) {
+body::Body loadDatasetBody(const DatasetFolder& folder) {
   verifyFilesStartingWith(folder, "body/");
-  return body::loadBody(folder / "body");
+  return body::loadBody(folder.path / "body");
 }
 
-garment::Embedding loadDatasetEmbedding(const fs::path& folder, int numBodyFaces) {
+garment::Embedding loadDatasetEmbedding(const DatasetFolder& folder, int numBodyFaces) {
   verifyFilesStartingWith(folder, "embedding");
-  return garment::loadEmbedding(folder, numBodyFaces);
+  return garment::loadEmbedding(folder.path, numBodyFaces);
 }
 
-Eigen::MatrixX3d loadDatasetRestPositions(const fs::path& folder, int vertexCount) {
+Eigen::MatrixX3d loadDatasetRestPositions(const DatasetFolder& folder, int vertexCount) {
   verifyFilesStartingWith(folder, kRestPositions);
-  return core::readNpyMatrixD(folder / kRestPositions, vertexCount, 3);
+  return core::readNpyMatrixD(folder.path / kRestPositions, vertexCount, 3);
 }
 
-DressingFiles loadDressingFiles(const fs::path& folder, const garment::Garment& garment,
+DressingFiles loadDressingFiles(const DatasetFolder& folder, const garment::Garment& garment,
                                 const std::string& garmentSource) {
   const int V = garment.mesh.numVertices();
-  const fs::path restFile = folder / kRestPositions;
+  const fs::path restFile = folder.path / kRestPositions;
   const core::NpyHeader restHeader = core::readNpyHeader(restFile);
   const std::int64_t restRows = restHeader.shape.empty() ? 0 : restHeader.shape[0];
   PIXELCLOTH_CHECK(restRows == V, restFile.string()
@@ -218,14 +215,14 @@ DressingFiles loadDressingFiles(const fs::path& folder, const garment::Garment& 
   out.body = loadDatasetBody(folder);
   out.rest = loadDatasetRestPositions(folder, V);
   out.embedding = loadDatasetEmbedding(folder, out.body.mesh.numFaces());
-  PIXELCLOTH_CHECK(out.embedding.size() == V, (folder / "embedding_triangle.npy").string()
+  PIXELCLOTH_CHECK(out.embedding.size() == V, (folder.path / "embedding_triangle.npy").string()
                                                   << ": " << out.embedding.size() << " cloth pixels, the "
                                                   << garment.name << " has " << V);
   return out;
 }
 
 garment::Garment datasetGarment(const DatasetInfo& info) {
-  verifyFilesStartingWith(info.folder, "garment/");
+  verifyFilesStartingWith({info.folder, info.checksums}, "garment/");
   const fs::path folder = info.folder / "garment";
   std::error_code ec;
   PIXELCLOTH_CHECK(fs::is_regular_file(folder / "garment.obj", ec) && fs::is_regular_file(folder / "garment.json", ec),

@@ -21,19 +21,20 @@ std::string joinedNames(const std::vector<std::string>& names) {
 
 }  // namespace
 
-DatasetSettings rebaseDataset(const fs::path& folder, const body::Body& body, const nlohmann::json& bodyDescription,
+DatasetSettings rebaseDataset(const DatasetFolder& where, const body::Body& body, const nlohmann::json& bodyDescription,
                               const fs::path& out) {
-  const Dataset dataset = openDataset(folder);
+  const fs::path& folder = where.path;
+  const Dataset dataset = openDataset(where);
   const DatasetInfo& info = dataset.info;
-  const body::Body old = loadDatasetBody(folder);
+  const body::Body old = loadDatasetBody(where);
   PIXELCLOTH_CHECK(body.skeleton.names == old.skeleton.names,
                    "dataset rebase: the body's skeleton has joints " << joinedNames(body.skeleton.names) << "; the "
                                                                       << "poses of " << folder.string()
                                                                       << " are for joints "
                                                                       << joinedNames(old.skeleton.names));
   const int V = dataset.vertexCount();
-  const garment::Embedding oldEmbedding = loadDatasetEmbedding(folder, old.mesh.numFaces());
-  const Eigen::MatrixX3d rest = loadDatasetRestPositions(folder, V);
+  const garment::Embedding oldEmbedding = loadDatasetEmbedding(where, old.mesh.numFaces());
+  const Eigen::MatrixX3d rest = loadDatasetRestPositions(where, V);
   const garment::Garment garment = datasetGarment(info);
   core::checkOutputFolder(out);
 

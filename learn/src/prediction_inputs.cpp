@@ -19,8 +19,8 @@ std::unique_ptr<TrainedModel> modelFor(const fs::path& modelFolder, const data::
 }
 }  // namespace
 
-PredictionInputs datasetPredictionInputs(const fs::path& modelFolder, const fs::path& dataset, const fs::path& base,
-                                         Engine engine) {
+PredictionInputs datasetPredictionInputs(const fs::path& modelFolder, const data::DatasetFolder& dataset,
+                                         const fs::path& base, Engine engine) {
   const data::DatasetInfo info = data::readDatasetInfo(dataset);
   PredictionInputs out;
   out.model = modelFor(modelFolder, info, engine);
@@ -33,13 +33,14 @@ PredictionInputs datasetPredictionInputs(const fs::path& modelFolder, const fs::
 }
 
 PredictionInputs posePredictionInputs(const fs::path& modelFolder, const body::Pose& pose, const std::string& poseName,
-                                      const fs::path& datasetArg, Engine engine) {
-  const fs::path dataset = datasetArg.empty() ? trainingDatasetOf(modelFolder) : datasetArg;
+                                      const data::DatasetFolder& datasetArg, Engine engine) {
+  const data::DatasetFolder dataset =
+      datasetArg.path.empty() ? datasetArg.with(trainingDatasetOf(modelFolder)) : datasetArg;
   const data::DatasetInfo info = data::readDatasetInfo(dataset);
   PredictionInputs out;
   out.model = modelFor(modelFolder, info, engine);
   TrainingData& data = out.data;
-  data.folder = dataset;
+  data.folder = dataset.path;
   data.info = info;
   data.garment = data::datasetGarment(info);
   data.space = out.model->space();

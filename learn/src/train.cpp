@@ -345,11 +345,12 @@ void TrainOptions::validate() const {
                    "train: positions are the baselines' space (fc, fc-pca); the decoders predict local or root offsets");
 }
 
-TrainReport train(const fs::path& datasetFolder, const fs::path& out, const TrainOptions& options) {
+TrainReport train(const data::DatasetFolder& dataset, const fs::path& out, const TrainOptions& options) {
+  const fs::path& datasetFolder = dataset.path;
   options.validate();
   const auto start = Clock::now();
   if (options.threads > 0) torch::set_num_threads(options.threads);
-  const data::DatasetInfo info = data::readDatasetInfo(datasetFolder);
+  const data::DatasetInfo info = data::readDatasetInfo(dataset);
   const garment::Garment garment = data::datasetGarment(info);
   const garment::GarmentTraits& traits = garment.traits;
   if (options.model.architecture == Architecture::Whole || options.model.architecture == Architecture::Necktie) {
@@ -367,7 +368,7 @@ TrainReport train(const fs::path& datasetFolder, const fs::path& out, const Trai
   const OffsetSpace space = options.space.value_or(traits.rootFrameOffsets ? OffsetSpace::Root : OffsetSpace::Local);
   const double normalWeight = options.normalWeight >= 0 ? options.normalWeight : traits.normalLossWeight;
   const double edgeWeight = options.edgeWeight >= 0 ? options.edgeWeight : traits.edgeLossWeight;
-  const TrainingData data = loadTrainingData(datasetFolder, space, options.residual);
+  const TrainingData data = loadTrainingData(dataset, space, options.residual);
   PIXELCLOTH_CHECK(!data.train.empty(), "train: " << datasetFolder.string() << " has no training samples");
 
   ModelSpec spec = options.model;

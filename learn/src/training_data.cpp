@@ -18,9 +18,10 @@ const std::vector<int>& TrainingData::split(data::Split which) const {
   PIXELCLOTH_FAIL("split " << static_cast<int>(which) << ", expected train, regularisation or test");
 }
 
-TrainingData loadTrainingData(const std::filesystem::path& folder, OffsetSpace space,
+TrainingData loadTrainingData(const data::DatasetFolder& where, OffsetSpace space,
                               const std::filesystem::path& baseFolder) {
-  const data::Dataset dataset = data::openDataset(folder);
+  const std::filesystem::path& folder = where.path;
+  const data::Dataset dataset = data::openDataset(where);
   TrainingData out;
   out.folder = folder;
   out.info = dataset.info;
@@ -28,8 +29,8 @@ TrainingData loadTrainingData(const std::filesystem::path& folder, OffsetSpace s
   out.garment = data::datasetGarment(dataset.info);
   out.space = space;
   out.poseSize = dataset.info.settings.poseSize;
-  const body::Body body = data::loadDatasetBody(folder);
-  const garment::Embedding embedding = data::loadDatasetEmbedding(folder, body.mesh.F.rows());
+  const body::Body body = data::loadDatasetBody(where);
+  const garment::Embedding embedding = data::loadDatasetEmbedding(where, body.mesh.F.rows());
   data::BaseSet base;
   if (!baseFolder.empty()) {
     base = data::openBaseSet(baseFolder, dataset.info);

@@ -82,14 +82,15 @@ std::string BaseSetReport::summary() const {
   return out.str();
 }
 
-BaseSetReport writeDatasetBases(const fs::path& datasetFolder, const fs::path& out, const BaseSetOptions& options) {
+BaseSetReport writeDatasetBases(const data::DatasetFolder& where, const fs::path& out, const BaseSetOptions& options) {
+  const fs::path& datasetFolder = where.path;
   options.validate();
   core::checkOutputFolder(out);
   std::error_code ec;
   PIXELCLOTH_CHECK(!fs::exists(out, ec) || !fs::equivalent(out, datasetFolder, ec),
                    out.string() << ": is the dataset folder; the base folder's manifest.json would replace the "
                                    "dataset's: give it a folder of its own");
-  const data::Dataset dataset = data::openDataset(datasetFolder);
+  const data::Dataset dataset = data::openDataset(where);
   const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<GarmentReconstructor> reconstructor =
       detail::datasetReconstructor(dataset, options.reconstruction);

@@ -12,12 +12,13 @@ namespace pixelcloth::recon {
 
 namespace fs = std::filesystem;
 
-CaptureBase baseOfCapture(const fs::path& baseFolder, const fs::path& dataset, const cage::MarkerSet& captured,
+CaptureBase baseOfCapture(const fs::path& baseFolder, const data::DatasetFolder& where, const cage::MarkerSet& captured,
                           const body::Pose& pose, const std::string& markersContext) {
+  const fs::path& dataset = where.path;
   const fs::path manifestPath = baseFolder / "manifest.json";
   const std::string context = manifestPath.string();
   const nlohmann::json manifest = core::readJson(manifestPath);
-  const data::DatasetInfo info = data::readDatasetInfo(dataset);
+  const data::DatasetInfo info = data::readDatasetInfo(where);
   const std::string format = core::valueOr<std::string>(manifest, "format", "", context);
   PIXELCLOTH_CHECK(format == "pixelcloth.base", context << ": not a base folder's manifest (format '" << format << "')");
   PIXELCLOTH_CHECK(core::valueOr(manifest, "dataset_manifest_crc32", 0u, context) ==
@@ -36,11 +37,11 @@ CaptureBase baseOfCapture(const fs::path& baseFolder, const fs::path& dataset, c
   if (lengthModel.is_object() && lengthModel.contains("model"))
     options.lengthModel = cage::lengthModelFromJson(lengthModel["model"], context + ": length_model");
 
-  const body::Body body = data::loadDatasetBody(dataset);
+  const body::Body body = data::loadDatasetBody(where);
   const garment::Garment garment = data::datasetGarment(info);
-  const garment::Embedding embedding = data::loadDatasetEmbedding(dataset, body.mesh.F.rows());
+  const garment::Embedding embedding = data::loadDatasetEmbedding(where, body.mesh.F.rows());
   const GarmentReconstructor reconstructor(body, garment, embedding,
-                                           data::loadDatasetRestPositions(dataset, garment.mesh.numVertices()), options);
+                                           data::loadDatasetRestPositions(where, garment.mesh.numVertices()), options);
   cage::MarkerOptions markerOptions;
   markerOptions.spacing = core::requireValue<double>(settings, "marker_spacing_m", context);
   const cage::MarkerSet definition = cage::defineMarkers(garment, reconstructor.cage(), markerOptions);

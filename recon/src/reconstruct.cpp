@@ -223,7 +223,7 @@ namespace detail {
 
 std::unique_ptr<GarmentReconstructor> datasetReconstructor(const data::Dataset& dataset,
                                                            const ReconstructionOptions& options) {
-  const fs::path& folder = dataset.info.folder;
+  const data::DatasetFolder folder = dataset.info.where();
   const garment::Garment garment = data::datasetGarment(dataset.info);
   const body::Body body = data::loadDatasetBody(folder);
   const garment::Embedding embedding = data::loadDatasetEmbedding(folder, body.mesh.numFaces());
@@ -285,11 +285,12 @@ std::string sampleFolder(int index) {
 }
 }  // namespace
 
-DatasetReconstructionReport reconstructDataset(const fs::path& datasetFolder, const fs::path& out,
+DatasetReconstructionReport reconstructDataset(const data::DatasetFolder& where, const fs::path& out,
                                                const DatasetReconstructionOptions& options) {
+  const fs::path& datasetFolder = where.path;
   options.validate();
   core::checkOutputFolder(out);
-  const data::Dataset dataset = data::openDataset(datasetFolder);
+  const data::Dataset dataset = data::openDataset(where);
   std::vector<int> rows;
   for (int r = 0; r < dataset.rows(); ++r)
     if (!options.split || dataset.split[r] == static_cast<std::uint8_t>(*options.split)) rows.push_back(r);

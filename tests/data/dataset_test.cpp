@@ -415,9 +415,14 @@ TEST_F(DatasetCheck, OpeningVerifiesEveryFileReadUnlessTurnedOff) {
   std::string message = inputErrorOf([&] { pd::openDataset(folder); });
   EXPECT_NE(message.find((folder / "offsets.npy").string() + ": CRC-32"), std::string::npos) << message;
   EXPECT_NE(message.find("--no-verify"), std::string::npos) << message;
-  pd::setVerifyDatasetFiles(false);
-  EXPECT_EQ(pd::openDataset(folder).rows(), 6);  // read as it is
-  pd::setVerifyDatasetFiles(true);
+  const pd::DatasetFolder unchecked(folder, pd::Checksums::Skip);
+  EXPECT_EQ(pd::openDataset(unchecked).rows(), 6);  // read as it is
+  // The choice travels with what was read: the garment of a Skip folder's info is read unchecked too.
+  std::ofstream(folder / "garment" / "garment.obj", std::ios::app) << "# edited by hand\n";
+  EXPECT_EQ(pd::datasetGarment(pd::readDatasetInfo(unchecked)).mesh.numVertices(), setup().garment.mesh.numVertices());
+  message = inputErrorOf([&] { pd::datasetGarment(pd::readDatasetInfo(folder)); });
+  EXPECT_NE(message.find("garment.obj: "), std::string::npos) << message;
+  EXPECT_NE(message.find("manifest.json says"), std::string::npos) << message;
 
   const fs::path other = copy("opened_body");
   flip(other / "body" / "weights.npy", 300);

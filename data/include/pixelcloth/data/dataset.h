@@ -8,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "pixelcloth/body/body.h"
@@ -166,9 +167,29 @@ class DatasetWriter {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Whether the dataset readers check each file they open against manifest.json's size and CRC-32 before using it
+/// (CRC-32 streams at GB/s, about a second per GB). A file the manifest does not list is read unchecked.
+enum class Checksums { Verify, Skip };
+
+/// A dataset folder together with how its files are to be read. Converts from a path, checked: only the CLI's
+/// `--no-verify` makes a Skip folder.
+struct DatasetFolder {
+  template <typename Path, typename = std::enable_if_t<std::is_constructible_v<std::filesystem::path, const Path&> &&
+                                                       !std::is_same_v<std::decay_t<Path>, DatasetFolder>>>
+  DatasetFolder(const Path& path, Checksums checksums = Checksums::Verify) : path(path), checksums(checksums) {}
+
+  std::filesystem::path path;
+  Checksums checksums = Checksums::Verify;
+
+  /// Another folder read the same way (a dataset's sibling, a shard).
+  DatasetFolder with(const std::filesystem::path& other) const { return {other, checksums}; }
+};
+
 /// The manifest of a finished dataset folder, parsed and validated (format version, fields, counts).
 struct DatasetInfo {
   std::filesystem::path folder;
+  Checksums checksums = Checksums::Verify;  ///< how the files it lists are read (DatasetFolder)
+  DatasetFolder where() const { return {folder, checksums}; }
   nlohmann::json manifest;
   DatasetSettings settings;
   DatasetStats stats;
@@ -181,16 +202,10 @@ struct DatasetInfo {
 };
 
 /// Reads manifest.json of `folder`; throws `InputError` naming the file and field when it is missing or malformed.
-DatasetInfo readDatasetInfo(const std::filesystem::path& folder);
+DatasetInfo readDatasetInfo(const DatasetFolder& folder);
 
-/// Whether the readers below check each dataset file they open against manifest.json's size and CRC-32 before
-/// using it (on by default; CRC-32 streams at GB/s, about a second per GB). The CLI's `--no-verify` turns it off for
-/// the process. A file the manifest does not list is read unchecked.
-void setVerifyDatasetFiles(bool verify);
-bool verifyDatasetFiles();
-
-/// When verification is on: throws `InputError` naming `info.folder / name` when its size or CRC-32 differs from
-/// the manifest's (a damaged or changed file).
+/// When `info.checksums` is Verify: throws `InputError` naming `info.folder / name` when its size or CRC-32 differs
+/// from the manifest's (a damaged or changed file).
 void verifyDatasetFile(const DatasetInfo& info, const std::string& name);
 
 /// A finished dataset in memory. Row r of every array is sample index settings.first() + r.
@@ -211,14 +226,14 @@ struct Dataset {
 };
 
 /// Reads a finished dataset (manifest and the four arrays, shapes and dtypes checked against the manifest; the arrays
-/// verified against their checksums, see verifyDatasetFiles()).
-Dataset openDataset(const std::filesystem::path& folder);
+/// verified against their checksums unless `folder.checksums` is Skip).
+Dataset openDataset(const DatasetFolder& folder);
 
 /// The dataset's body (body/), embedding (embedding_*.npy, checked against the body's faces) and rest positions, each
-/// file verified against the manifest's checksums first (verifyDatasetFiles()).
-body::Body loadDatasetBody(const std::filesystem::path& folder);
-garment::Embedding loadDatasetEmbedding(const std::filesystem::path& folder, int numBodyFaces);
-Eigen::MatrixX3d loadDatasetRestPositions(const std::filesystem::path& folder, int vertexCount);
+/// file verified against the manifest's checksums first (unless `folder.checksums` is Skip).
+body::Body loadDatasetBody(const DatasetFolder& folder);
+garment::Embedding loadDatasetEmbedding(const DatasetFolder& folder, int numBodyFaces);
+Eigen::MatrixX3d loadDatasetRestPositions(const DatasetFolder& folder, int vertexCount);
 
 /// A garment dressed on a body, as a dressing folder (`pixelcloth dress`) or a dataset holds it.
 struct DressingFiles {
@@ -231,7 +246,7 @@ struct DressingFiles {
 /// InputError naming the file when its rest positions or embedding hold another vertex count (the dressing is of
 /// another garment) or when a file is missing or damaged. `garmentSource` names where `garment` came from for that
 /// message (e.g. "the markers (m.json)"); empty: the garment alone.
-DressingFiles loadDressingFiles(const std::filesystem::path& folder, const garment::Garment& garment,
+DressingFiles loadDressingFiles(const DatasetFolder& folder, const garment::Garment& garment,
                                 const std::string& garmentSource = "");
 
 /// The garment the dataset was made with, read from its garment/ folder (garment::loadGarment; checksums verified
@@ -293,7 +308,7 @@ struct ImportOptions {
 /// (the old folder, its body and its manifest CRC-32), and the generator settings are the old ones with
 /// "rebased_stats" (the old solver statistics, which the new per-sample stats cannot carry). Throws `InputError`
 /// for a body whose skeleton differs from the dataset's body's (joint names and order), naming both.
-DatasetSettings rebaseDataset(const std::filesystem::path& folder, const body::Body& body,
+DatasetSettings rebaseDataset(const DatasetFolder& folder, const body::Body& body,
                               const nlohmann::json& bodyDescription, const std::filesystem::path& out);
 
 /// Imports garment shapes from another simulator or from capture: `objs` (one garment mesh per frame, the same

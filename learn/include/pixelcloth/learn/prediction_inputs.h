@@ -23,14 +23,14 @@ struct PredictionInputs {
 /// Every row of `dataset`, for the model in `modelFolder` (checked against the dataset); a residual model's base
 /// folder is `base`, by default the one it was trained with. Throws InputError for a model of another garment or
 /// body, or a `base` given to a model that takes the pose alone.
-PredictionInputs datasetPredictionInputs(const std::filesystem::path& modelFolder, const std::filesystem::path& dataset,
+PredictionInputs datasetPredictionInputs(const std::filesystem::path& modelFolder, const data::DatasetFolder& dataset,
                                          const std::filesystem::path& base, Engine engine);
 
 /// One row: `pose` (read from `poseName`, for messages) on the body of `dataset` (empty: the model's training
 /// dataset). A residual model's row is finished by addPoseBase. Throws InputError when the pose turns joints beyond
 /// the model's pose size.
 PredictionInputs posePredictionInputs(const std::filesystem::path& modelFolder, const body::Pose& pose,
-                                      const std::string& poseName, const std::filesystem::path& dataset, Engine engine);
+                                      const std::string& poseName, const data::DatasetFolder& dataset, Engine engine);
 
 /// Completes the one row of a residual model's posePredictionInputs: the base offsets (#V x 3, du dv dn in the posed
 /// body's frames) rebuilt from the garment's markers and their 3M marker features (recon::baseOfCapture).

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "pixelcloth/data/dataset.h"
 #include "pixelcloth/learn/model.h"
 #include "pixelcloth/learn/spaces.h"
 
@@ -88,6 +89,6 @@ struct TrainReport {
 /// kill -9 too) and ends with the weights of an uninterrupted run; more epochs extend a finished run. Throws
 /// InputError for a model that does not fit the dataset, a base folder of another dataset, or a folder holding a run
 /// with other settings.
-TrainReport train(const std::filesystem::path& dataset, const std::filesystem::path& out, const TrainOptions& options);
+TrainReport train(const data::DatasetFolder& dataset, const std::filesystem::path& out, const TrainOptions& options);
 
 }  // namespace pixelcloth::learn

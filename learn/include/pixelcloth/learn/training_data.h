@@ -42,7 +42,7 @@ struct TrainingData {
 
 /// Reads a finished dataset (and, when `baseFolder` is not empty, its base folder, checked against it) into the
 /// trainer's form.
-TrainingData loadTrainingData(const std::filesystem::path& dataset, OffsetSpace space,
+TrainingData loadTrainingData(const data::DatasetFolder& dataset, OffsetSpace space,
                               const std::filesystem::path& baseFolder);
 
 }  // namespace pixelcloth::learn

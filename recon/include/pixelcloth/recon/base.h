@@ -56,7 +56,7 @@ struct BaseSetReport {
 /// and length_model ("none" or {"source", "samples", "model": the model as cage::toJson writes it}, so a new capture
 /// can be rebuilt the same way). Progress on stderr. Throws InputError for a bad dataset folder or
 /// options.
-BaseSetReport writeDatasetBases(const std::filesystem::path& dataset, const std::filesystem::path& out,
+BaseSetReport writeDatasetBases(const data::DatasetFolder& dataset, const std::filesystem::path& out,
                                 const BaseSetOptions& options = {});
 
 }  // namespace pixelcloth::recon

@@ -8,6 +8,7 @@
 
 #include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/cage/markers.h"
+#include "pixelcloth/data/dataset.h"
 
 namespace pixelcloth::recon {
 
@@ -20,7 +21,7 @@ struct CaptureBase {
 /// settings recorded in `baseFolder`/manifest.json (marker spacing and names, body clearance, rest lengths, anisotropy,
 /// length model), by spline_anisotropic, as writeDatasetBases did for the dataset's samples. Throws InputError naming
 /// the file for a base folder of another dataset, or markers that do not fit the garment or the base folder's.
-CaptureBase baseOfCapture(const std::filesystem::path& baseFolder, const std::filesystem::path& dataset,
+CaptureBase baseOfCapture(const std::filesystem::path& baseFolder, const data::DatasetFolder& dataset,
                           const cage::MarkerSet& captured, const body::Pose& pose, const std::string& markersContext);
 
 }  // namespace pixelcloth::recon

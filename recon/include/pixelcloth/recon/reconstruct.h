@@ -172,7 +172,7 @@ struct DatasetReconstructionReport {
 /// is used) and OBJs of the first few samples (sample_NNNNNN/truth.obj, <method>.obj); the error maps are viz's
 /// (viz::renderReconstructionErrors of the report). Progress on stderr. Throws InputError for a bad
 /// folder, an empty split or options.
-DatasetReconstructionReport reconstructDataset(const std::filesystem::path& dataset, const std::filesystem::path& out,
+DatasetReconstructionReport reconstructDataset(const data::DatasetFolder& dataset, const std::filesystem::path& out,
                                                const DatasetReconstructionOptions& options = {});
 
 }  // namespace pixelcloth::recon

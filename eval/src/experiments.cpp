@@ -105,25 +105,8 @@ class Run {
     figures.seconds = trainedHere ? report.seconds : 0;
     command("pixelcloth train --dataset " + fs::relative(dataset, out_).string() + " " + flags + " --out models/" +
             name);
-    measure(figures, dataset, modes, std::move(pca));
+    measureModel(figures, dataset, modes, std::move(pca));
     return results_.models[name] = std::move(figures);
-  }
-
-  /// Fills the train and test figures of a trained model.
-  void measure(ModelFigures& figures, const fs::path& dataset, const std::vector<stitch::StitchMode>& modes,
-               std::shared_ptr<const stitch::PcaFilter> pca) {
-    const learn::PredictionInputs inputs =
-        learn::datasetPredictionInputs(figures.folder, dataset, {}, learn::Engine::OneDnn);
-    const stitch::Evaluation train = stitch::evaluate(*inputs.model, inputs.data, data::Split::Train).front();
-    figures.trainCm = train.metrics["vertex_error_cm"].get<double>();
-    figures.trainNormal = train.metrics["normal_cosine_distance"].get<double>();
-    std::vector<stitch::Stitcher> stitchers;
-    for (const stitch::StitchMode& mode : modes) stitchers.emplace_back(inputs.data.garment, mode, pca);
-    std::vector<const stitch::Stitcher*> pointers;
-    for (const stitch::Stitcher& s : stitchers) pointers.push_back(&s);
-    figures.test = stitch::evaluate(*inputs.model, inputs.data, data::Split::Test, pointers);
-    figures.testCm = figures.test.front().metrics["vertex_error_cm"].get<double>();
-    figures.testNormal = figures.test.front().metrics["normal_cosine_distance"].get<double>();
   }
 
  private:
@@ -149,6 +132,23 @@ std::string cnnFlags(const ExperimentPlan& plan) {
 }
 
 }  // namespace
+
+void measureModel(ModelFigures& figures, const data::DatasetFolder& dataset,
+                  const std::vector<stitch::StitchMode>& modes, std::shared_ptr<const stitch::PcaFilter> pca) {
+  const learn::PredictionInputs inputs =
+      learn::datasetPredictionInputs(figures.folder, dataset, {}, learn::Engine::OneDnn);
+  const stitch::Evaluation train = stitch::evaluate(*inputs.model, inputs.data, data::Split::Train).front();
+  figures.trainCm = train.metrics["vertex_error_cm"].get<double>();
+  figures.trainNormal = train.metrics["normal_cosine_distance"].get<double>();
+  std::vector<stitch::Stitcher> stitchers;
+  for (const stitch::StitchMode& mode : modes) stitchers.emplace_back(inputs.data.garment, mode, pca);
+  std::vector<const stitch::Stitcher*> pointers;
+  for (const stitch::Stitcher& s : stitchers) pointers.push_back(&s);
+  const data::Split test = inputs.data.test.empty() ? data::Split::Train : data::Split::Test;
+  figures.test = stitch::evaluate(*inputs.model, inputs.data, test, pointers);
+  figures.testCm = figures.test.front().metrics["vertex_error_cm"].get<double>();
+  figures.testNormal = figures.test.front().metrics["normal_cosine_distance"].get<double>();
+}
 
 const char* scaleName(Scale scale) { return kScales.name(scale); }
 Scale scaleFromName(const std::string& name, const std::string& context) { return kScales.fromName(name, context); }

@@ -8,13 +8,13 @@
 
 #include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/cage/body_cage.h"
-#include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/data/dataset.h"
+#include "pixelcloth/eval/demo.h"
 #include "pixelcloth/garment/garment.h"
 #include "pixelcloth/learn/model.h"
 #include "pixelcloth/learn/train.h"
@@ -22,7 +22,6 @@
 #include "pixelcloth/patches/edit.h"
 #include "pixelcloth/patches/garment_fill.h"
 #include "pixelcloth/recon/reconstruct.h"
-#include "pixelcloth/sim/generate.h"
 #include "pixelcloth/sim/pose_sampler.h"
 #include "pixelcloth/viz/basis_figures.h"
 #include "pixelcloth/viz/draw.h"
@@ -50,18 +49,10 @@ Pose showPose() {
   return Pose::fromEulerDegrees(e);
 }
 
-/// A small simulated dataset of one garment, checked, with a contact sheet: posed body, draped garment, cloth image.
-void simulatedDataset(Report& report, const body::Body& body, std::uint64_t seed, const std::string& name, int count) {
+/// A simulated dataset's contact sheet (posed body, draped garment, cloth image of its first samples) and figures.
+void drawDataset(Report& report, const body::Body& body, const std::string& name, const eval::SimulatedDataset& made) {
   const std::string folder = "dataset_" + name;
-  report.freshFolder(folder);
-  sim::GenerateOptions generate;
-  generate.garment = name;
-  generate.count = count;
-  generate.seed = seed;
-  generate.bodyFolder = report.folder() / "body";
-  const sim::GenerateReport made = sim::generateDataset(report.folder() / folder, generate);
-  const data::DatasetCheckReport checked = data::checkDataset(report.folder() / folder);
-  const data::Dataset dataset = data::openDataset(report.folder() / folder);
+  const data::Dataset dataset = data::openDataset(made.folder);
   const Garment garment = data::datasetGarment(dataset.info);
   patches::ClothImager imager(garment);
   PreviewOptions preview;
@@ -79,10 +70,10 @@ void simulatedDataset(Report& report, const body::Body& body, std::uint64_t seed
     row.push_back(renderGarmentOnBody(draped, &posed, 300));
     row.push_back(renderClothImage(imager.rasterize(dataset.offsetsOf(r)), preview));
   }
-  writePng(report.folder() / folder / "contact_sheet.png", contactSheet(row, 3));
+  writePng(made.folder / "contact_sheet.png", contactSheet(row, 3));
   report.json()[folder] = {{"samples", dataset.rows()},
                            {"seconds", made.seconds},
-                           {"check", checked.summary()},
+                           {"check", made.check.summary()},
                            {"stats", dataset.info.stats.toJson()}};
 }
 }  // namespace
@@ -165,13 +156,13 @@ void demoSkinningArtifacts(Report& report, const body::Body& body) {
                  {"skinning_artifacts.png"});
 }
 
-void demoPoses(Report& report, const body::Body& body, const DemoOptions& demo) {
+void demoPoses(Report& report, const body::Body& body, int count, std::uint64_t seed) {
   report.step("poses: random poses within the joint limits", [&] {
     sim::PoseSamplerOptions options;
-    options.seed = demo.seed;
+    options.seed = seed;
     sim::PoseSampler sampler(body, options);
-    std::vector<Pose> poses = sampler.sample(demo.poses);
-    writePosedBodies(report.folder() / "poses", body, poses, {{"seed", demo.seed}, {"sampler", "appendix"}});
+    std::vector<Pose> poses = sampler.sample(count);
+    writePosedBodies(report.folder() / "poses", body, poses, {{"seed", seed}, {"sampler", "appendix"}});
     report.json()["poses"] = {{"kept", sampler.stats().accepted},
                               {"rejected_arm_inside_torso", sampler.stats().rejectedArmInsideTorso}};
   });
@@ -295,15 +286,11 @@ void demoClothImages(Report& report) {
                  {"images/filled_and_edited.png"});
 }
 
-void demoDressing(Report& report, const body::Body& body) {
-  report.step("dressing: T-shirt and necktie on the mannequin", [&] {
-    for (const Garment& garment : {makeTShirt(), makeNecktie()}) {
-      const cage::Dressing dressing =
-          cage::dressGarment(body, cage::bodyCage(body), garment, cage::garmentCage(garment));
-      writeDressingFolder(body, garment, dressing, report.folder() / "dressing" / garment.name);
-      report.json()["dressing"][garment.name] = dressing.summary();
-    }
-  });
+void demoDressing(Report& report, const body::Body& body, const std::vector<eval::DressedGarment>& dressed) {
+  for (const eval::DressedGarment& d : dressed) {
+    writeDressingFolder(body, d.garment, d.dressing, report.folder() / "dressing" / d.garment.name);
+    report.json()["dressing"][d.garment.name] = d.dressing.summary();
+  }
   report.section(
       "Dressing",
       "The T-shirt's cage morphed onto the body cage, the rest carried by a Poisson solve, pushed out of the "
@@ -312,13 +299,10 @@ void demoDressing(Report& report, const body::Body& body) {
           ". Area distortion in pattern space before and after relaxation (red stretch, blue compression), "
           "and the dressed shirt. The necktie keeps its rest placement.",
       {"dressing/tshirt/area_distortion.png", "dressing/tshirt/dressed.png"});
-
-  // A small simulated dataset per garment, checked, with a contact sheet: posed body, draped garment, cloth image.
 }
 
-void demoTShirtDataset(Report& report, const body::Body& body, const DemoOptions& demo) {
-  report.step("datasets: simulated T-shirt samples, checked; contact sheet",
-              [&] { simulatedDataset(report, body, demo.seed, "tshirt", demo.tshirtSamples); });
+void demoTShirtDataset(Report& report, const body::Body& body, const eval::SimulatedDataset& made) {
+  drawDataset(report, body, "tshirt", made);
   report.section(
       "Simulated T-shirt dataset",
       "pixelcloth generate: poses from the appendix sampler, the dressed shirt settled under gravity, then "
@@ -330,24 +314,15 @@ void demoTShirtDataset(Report& report, const body::Body& body, const DemoOptions
       {"dataset_tshirt/contact_sheet.png"});
 }
 
-void demoReconstruction(Report& report, const body::Body& body) {
-  report.step("reconstruction from markers: the T-shirt samples rebuilt by every method", [&] {
-    // The spline's length model is fitted on the training split; the test split is rebuilt (every sample when the
-    // dataset is too small to have one).
+void demoReconstruction(Report& report, const body::Body& body, const eval::DemoReconstruction& made) {
+  {
     const data::Dataset dataset = data::openDataset(report.folder() / "dataset_tshirt");
-    recon::DatasetReconstructionOptions options;
-    if (dataset.rowsOf(data::Split::Test).empty()) options.split.reset();
-    options.meshes = 2;
     const fs::path folder = report.folder() / "reconstruction";
-    const recon::DatasetReconstructionReport rec =
-        recon::reconstructDataset(report.folder() / "dataset_tshirt", folder, options);
-    std::vector<int> shown;
-    for (int r = 0; r < dataset.rows() && static_cast<int>(shown.size()) < 2; ++r)
-      if (!options.split || dataset.split[r] == static_cast<std::uint8_t>(data::Split::Test)) shown.push_back(r);
+    const recon::DatasetReconstructionReport& rec = made.report;
     const Garment shirt = data::datasetGarment(dataset.info);
     writePng(folder / "error_maps.png", renderReconstructionErrors(shirt, rec));
     std::vector<RgbImage> rows;
-    for (int r : shown) {
+    for (int r : made.shown) {
       std::ostringstream sample;
       sample << "sample_" << std::setw(6) << std::setfill('0') << dataset.info.settings.first() + r;
       Body posed = body;
@@ -366,7 +341,7 @@ void demoReconstruction(Report& report, const body::Body& body) {
     nlohmann::json summary = rec.metrics;
     for (auto& [name, method] : summary["methods"].items()) method.erase("curves");
     report.json()["reconstruction"] = summary;
-  });
+  }
   {
     std::ostringstream text;
     text << std::fixed << std::setprecision(2);
@@ -389,9 +364,8 @@ void demoReconstruction(Report& report, const body::Body& body) {
   }
 }
 
-void demoNecktieDataset(Report& report, const body::Body& body, const DemoOptions& demo) {
-  report.step("datasets: simulated necktie samples, checked; contact sheet",
-              [&] { simulatedDataset(report, body, demo.seed, "necktie", 6); });
+void demoNecktieDataset(Report& report, const body::Body& body, const eval::SimulatedDataset& made) {
+  drawDataset(report, body, "necktie", made);
   report.section(
       "Simulated necktie dataset",
       "pixelcloth generate --garment necktie: poses from the appendix sampler (centre line only), quasistatic "
@@ -401,33 +375,11 @@ void demoNecktieDataset(Report& report, const body::Body& body, const DemoOption
       {"dataset_necktie/contact_sheet.png"});
 }
 
-void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions& demo) {
-  report.step("pose sampling: draws simulated on the T-shirt, joint-angle histograms before and after filtering", [&] {
-    sim::PoseSamplerOptions options;
-    options.seed = demo.seed;
-    sim::PoseSampler sampler(body, options);
-    std::vector<Pose> drawn, survivors, kept;
-    for (int k = 0; k < demo.filterPoses; ++k) drawn.push_back(sampler.draw());
-    data::DatasetStats tally;  // the same tally as a dataset's manifest: kept samples, rejections by reason
-    for (const Pose& pose : drawn) {
-      if (sampler.armInsideTorso(pose))
-        tally.reject(data::Rejection::ArmInsideTorso);
-      else
-        survivors.push_back(pose);
-    }
-    const Garment shirt = makeTShirt();
-    const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), shirt, cage::garmentCage(shirt));
-    const std::vector<data::SampleStats> stats = sim::simulatePoses(body, shirt, dressing, survivors);
-    double seconds = 0;
-    for (size_t k = 0; k < stats.size(); ++k) {
-      seconds += stats[k].seconds;
-      if (stats[k].rejection == data::Rejection::None) {
-        kept.push_back(survivors[k]);
-        tally.add(stats[k]);
-      } else {
-        tally.reject(stats[k].rejection);
-      }
-    }
+void demoPoseSampling(Report& report, const eval::PoseFiltering& filtering) {
+  {
+    const std::vector<Pose>&drawn = filtering.drawn, &survivors = filtering.simulated, &kept = filtering.kept;
+    const data::DatasetStats& tally = filtering.tally;
+    const double seconds = filtering.seconds;
     writePng(report.folder() / "poses" / "joint_histograms.png",
              renderJointHistograms({{"drawn", drawn, {175, 175, 175}},
                                     {"simulated (after pruning arms in the torso)", survivors, {140, 185, 235}},
@@ -447,7 +399,7 @@ void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions&
         {"rejection_rate", 1.0 - static_cast<double>(kept.size()) / drawn.size()},
         {"mean_seconds_per_simulation", survivors.empty() ? 0.0 : seconds / survivors.size()},
         {"max_penetration_mm_kept", 1e3 * tally.maxPenetration}};
-  });
+  }
   {
     std::ostringstream text;
     text << std::fixed << std::setprecision(2);
@@ -469,7 +421,7 @@ void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions&
     describe(poses["worst_bin_overall"], "to pruning and simulation together");
     report.section(
         "Pose sampling and simulation filtering",
-        std::to_string(demo.filterPoses) +
+        std::to_string(filtering.drawn.size()) +
             " poses from the appendix sampler (grey), each pruned when an arm falls inside the torso or else "
             "simulated on the T-shirt (light blue) and kept only when it passes the paper's test (no triangle "
             "shrinks by more than 75% or grows by more than 100%) and no vertex ends more than 2 mm inside its body "
@@ -479,7 +431,7 @@ void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions&
   }
 }
 
-void demoNetworks(Report& report) {
+void demoNetworks(Report& report, const learn::TrainReport& necktie) {
   std::ostringstream text;
   text << std::fixed;
   report.step("networks: the paper's decoders and the fully connected baselines", [&] {
@@ -511,30 +463,22 @@ void demoNetworks(Report& report) {
       }
     }
   });
-  // A quarter-width necktie decoder trained briefly on the demo's necktie samples (needs demoNecktieDataset).
-  learn::NetworkReport trained;
-  report.step("training: a quarter-width necktie decoder on the demo's necktie samples", [&] {
-    learn::TrainOptions options;
-    options.model.architecture = learn::Architecture::Necktie;
-    options.model.width = 0.25;
-    options.epochs = 60;
-    options.batch = 2;
-    options.learningRate = 2e-3;
-    trained = learn::train(report.folder() / "dataset_necktie", report.freshFolder("model_necktie"), options).networks.front();
-    writePng(report.folder() / "model_necktie" / "training.png", renderTrainingCurves(trained, "necktie width 0.25"));
+  // The quarter-width necktie decoder trained briefly on the demo's necktie samples.
+  const learn::NetworkReport& trained = necktie.networks.front();
+  writePng(necktie.networks.front().folder / "training.png", renderTrainingCurves(trained, "necktie width 0.25"));
+  {
     const learn::EpochRecord& best = trained.epochs[trained.bestEpoch - 1];
+    double seconds = 0;
+    for (const learn::EpochRecord& e : trained.epochs) seconds += e.seconds;
     report.json()["training"] = {{"model", "necktie"},
                                  {"width", 0.25},
-                                 {"epochs", options.epochs},
+                                 {"epochs", trained.epochs.size()},
                                  {"samples", report.json()["dataset_necktie"]["samples"]},
                                  {"best_epoch", best.epoch},
                                  {"first_train_error_cm", trained.epochs.front().trainErrorCm},
                                  {"train_error_cm", best.trainErrorCm},
-                                 {"seconds", 0.0}};
-    double seconds = 0;
-    for (const learn::EpochRecord& e : trained.epochs) seconds += e.seconds;
-    report.json()["training"]["seconds"] = seconds;
-  });
+                                 {"seconds", seconds}};
+  }
   report.section("Networks",
                  "The learned half begins with its networks (learn/). Per sample, the "
                  "whole-garment decoder maps the 90-float pose to a 256 x 256 x 6 cloth image of both sides, a patch "
@@ -543,8 +487,8 @@ void demoNetworks(Report& report) {
                  "fully connected baselines map the pose to the T-shirt's per-vertex values, directly or through 128 "
                  "PCA coefficients: " +
                      text.str() + "the quarter-width forward times are in report.json (networks). Below: a " +
-                     "quarter-width necktie decoder trained for 60 epochs on the demo's " +
-                     std::to_string(report.json()["dataset_necktie"]["samples"].get<int>()) +
+                     "quarter-width necktie decoder trained for " + std::to_string(trained.epochs.size()) +
+                     " epochs on the demo's " + std::to_string(report.json()["dataset_necktie"]["samples"].get<int>()) +
                      " simulated neckties (masked L1, Adam; the best epoch chosen on the regularisation split): "
                      "per-vertex error on its training samples " +
                      [&] {

@@ -1,27 +1,10 @@
-// The demo's own-garment section: a T-shirt OBJ written the way other cloth programs write theirs (tube sleeves with
-// several UVs per vertex, Z up, centimetres, another origin) is imported without a cage file and taken through the
-// pipeline as a garment folder: fitted to the body (its cage lines and patches), dressing, simulation, markers,
-// reconstruction, a per-patch model, prediction and evaluation.
+// The demo's own-garment section (eval::runOwnGarment) drawn: a T-shirt OBJ written the way other cloth programs write
+// theirs, imported without a cage file and taken through the pipeline as a garment folder: its pattern with the fitted
+// cage lines, its dressing, a prediction beside ground truth, and the figures of every stage.
 #include <iomanip>
 #include <sstream>
 
-#include "pixelcloth/cage/body_cage.h"
-#include "pixelcloth/cage/dressing.h"
-#include "pixelcloth/cage/garment_cage.h"
-#include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/measure.h"
-#include "pixelcloth/core/mesh_io.h"
-#include "pixelcloth/data/dataset.h"
-#include "pixelcloth/garment/garment.h"
-#include "pixelcloth/garment/obj_import.h"
-#include "pixelcloth/learn/predict.h"
-#include "pixelcloth/learn/train.h"
-#include "pixelcloth/learn/training_data.h"
-#include "pixelcloth/patches/body_fit.h"
-#include "pixelcloth/patches/patch.h"
-#include "pixelcloth/recon/reconstruct.h"
-#include "pixelcloth/sim/generate.h"
-#include "pixelcloth/stitch/evaluate.h"
 #include "pixelcloth/viz/demo.h"
 #include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/pictures.h"
@@ -29,121 +12,59 @@
 
 namespace pixelcloth::viz {
 
-namespace fs = std::filesystem;
-
-void demoOwnGarment(Report& report, const body::Body& body, const DemoOptions& demo) {
-  const fs::path folder = report.folder() / "own_garment";
-  const fs::path garmentFolder = folder / "garment", datasetFolder = folder / "dataset";
+void demoOwnGarment(Report& report, const body::Body& body, const eval::OwnGarment& own) {
   nlohmann::json& figures = report.json()["own_garment"];
   figures = nlohmann::json::object();
-  report.step("your own garment: a T-shirt OBJ as other programs write it, imported without a cage file", [&] {
-    report.freshFolder("own_garment");
-    // The file a user brings: each sleeve one tube-shaped UV island cut along the underarm (its vertices hold two UVs
-    // there), Z up, in centimetres, its origin 90 cm below and 5 cm behind the body's.
-    garment::TShirtOptions shirt;
-    shirt.targetVertices = 2000;
-    garment::ObjExportOptions file;
-    file.tubeSleeves = true;
-    file.up = 'z';
-    file.scale = 0.01;
-    file.translate = Eigen::Vector3d(0, 0.9, 0.05);
-    file.shuffleSeed = 7;
-    garment::exportGarmentObj(garment::makeTShirt(shirt), folder / "shirt.obj", file);
-    const core::Mesh raw = core::readMesh(folder / "shirt.obj");
-    garment::ObjImportOptions placement;
-    placement.name = "my_shirt";
-    placement.up = 'z';
-    placement.scale = 0.01;
-    placement.translate = file.translate;
-    garment::ObjImportReport notes;
-    garment::Garment imported = garment::importGarmentObj(folder / "shirt.obj", placement, &notes);
-    const size_t piecePatches = patches::garmentPatches(imported).size();
-    // `garment --import ... --fit-to BODY`: the body loops, centre lines and splits that give it patches.
-    const patches::BodyFitReport fit = patches::fitGarmentToBody(imported, body);
-    garment::saveGarment(garmentFolder, imported);
-    writePng(garmentFolder / "pattern.png", renderPattern(imported));
-    writePng(garmentFolder / "garment.png", renderGarmentOnBody(imported, &body));
-    figures["file"] = {{"vertices", raw.numVertices()}, {"uvs", raw.UV.rows()}, {"faces", raw.numFaces()}};
-    figures["import"] = {{"summary", imported.summary()}, {"fixes", notes.summary()}};
-    figures["fit"] = {{"summary", fit.summary()},
-                      {"patches_before", piecePatches},
-                      {"patches", fit.patches},
-                      {"largest_patch_px", fit.largestPatchPixels}};
+  writePng(own.garmentFolder / "pattern.png", renderPattern(own.garment));
+  writePng(own.garmentFolder / "garment.png", renderGarmentOnBody(own.garment, &body));
+  writeDressingFolder(body, own.garment, own.dressing, own.folder / "dressing");
+  figures["file"] = {{"vertices", own.fileVertices}, {"uvs", own.fileUvs}, {"faces", own.fileFaces}};
+  figures["import"] = {{"summary", own.garment.summary()}, {"fixes", own.import.summary()}};
+  figures["fit"] = {{"summary", own.fit.summary()},
+                    {"patches_before", own.piecePatches},
+                    {"patches", own.fit.patches},
+                    {"largest_patch_px", own.fit.largestPatchPixels}};
+  figures["dressing"] = own.dressing.summary();
+  figures["dataset"] = {{"samples", own.dataset.info.settings.rows()},
+                        {"seconds", own.dataset.seconds},
+                        {"check", own.dataset.check.summary()},
+                        {"stats", own.dataset.info.stats.toJson()}};
+  const nlohmann::json& rec = own.reconstruction.metrics;
+  figures["reconstruction"] = {{"markers", rec["markers"]},
+                               {"spline_garment_cm", rec["methods"]["spline"]["garment_cm"]},
+                               {"linear_garment_cm", rec["methods"]["linear"]["garment_cm"]}};
 
-    const cage::Dressing dressing =
-        cage::dressGarment(body, cage::bodyCage(body), imported, cage::garmentCage(imported));
-    writeDressingFolder(body, imported, dressing, folder / "dressing");
-    figures["dressing"] = dressing.summary();
-  });
-  report.step("your own garment: simulated, checked, rebuilt from markers", [&] {
-    sim::GenerateOptions generate;
-    generate.garment = garmentFolder.string();  // the folder, as `generate --garment DIR` takes it
-    generate.count = demo.ownGarmentSamples;
-    generate.seed = demo.seed;
-    generate.bodyFolder = report.folder() / "body";
-    const sim::GenerateReport made = sim::generateDataset(datasetFolder, generate);
-    const data::DatasetCheckReport checked = data::checkDataset(datasetFolder);
-    const data::Dataset dataset = data::openDataset(datasetFolder);
-    figures["dataset"] = {{"samples", dataset.rows()},
-                          {"seconds", made.seconds},
-                          {"check", checked.summary()},
-                          {"stats", dataset.info.stats.toJson()}};
-    recon::DatasetReconstructionOptions options;
-    options.split.reset();  // every row
-    options.meshes = 1;
-    const recon::DatasetReconstructionReport rec =
-        recon::reconstructDataset(datasetFolder, folder / "reconstruction", options);
-    figures["reconstruction"] = {{"markers", rec.metrics["markers"]},
-                                 {"spline_garment_cm", rec.metrics["methods"]["spline"]["garment_cm"]},
-                                 {"linear_garment_cm", rec.metrics["methods"]["linear"]["garment_cm"]}};
-  });
-  report.step("your own garment: per-patch decoders trained, predicted and evaluated", [&] {
-    // The paper's per-patch decoders (section 5), as small as the template's in the learning section.
-    learn::TrainOptions options;
-    options.model.architecture = learn::Architecture::Patch;
-    options.model.width = 0.125;
-    options.epochs = demo.learningEpochs;
-    options.batch = 4;
-    options.learningRate = 2e-3;
-    const fs::path modelFolder = folder / "model_patch";
-    const learn::TrainReport trained = learn::train(datasetFolder, modelFolder, options);
-    writePng(modelFolder / "training.png",
-             renderTrainingCurves(trained.networks.front(),
-                                  "my_shirt patch " + std::to_string(trained.networks.front().patch)));
-    const garment::Garment shirt = data::datasetGarment(data::readDatasetInfo(datasetFolder));
-    const learn::TrainedModel model(modelFolder, shirt);
-    const learn::TrainingData data = learn::loadTrainingData(datasetFolder, model.space(), fs::path());
-    const data::Split split = data.test.empty() ? data::Split::Train : data::Split::Test;
-    const stitch::Evaluation evaluation = stitch::evaluate(model, data, split).front();
-    const std::vector<int>& rows = data.split(split);
-    const std::vector<int> shown(rows.begin(), rows.begin() + std::min<size_t>(2, rows.size()));
-    const stitch::RowPredictions predicted = stitch::predictRows(model, data, shown);
-    std::vector<core::RgbImage> pictures;
-    for (size_t k = 0; k < shown.size(); ++k) {
-      body::Body posed = body;
-      posed.mesh = body.posedMesh(body::Pose::fromLeading(data.inputs.row(shown[k]).head(data.poseSize).transpose()));
-      garment::Garment truth = shirt, guess = shirt;
-      truth.mesh.V = data.truth[shown[k]].cast<double>();
-      guess.mesh.V = predicted.positions[k];
-      core::RgbImage left = renderGarmentOnBody(truth, &posed, 240), right = renderGarmentOnBody(guess, &posed, 240);
-      drawText(left, {8, 8}, "ground truth", {0, 0, 0}, 2);
-      std::ostringstream label;
-      label << std::fixed << std::setprecision(2) << "patches "
-            << core::meanVertexErrorCm(predicted.positions[k], data.truth[shown[k]]) << " cm";
-      drawText(right, {8, 8}, label.str(), {0, 0, 0}, 2);
-      pictures.push_back(left);
-      pictures.push_back(right);
-    }
-    writePng(folder / "predictions.png", contactSheet(pictures, 2));
-    figures["learning"] = {{"model", "patch"},
-                           {"networks", trained.networks.size()},
-                           {"width", options.model.width},
-                           {"epochs", options.epochs},
-                           {"seconds", trained.seconds},
-                           {"split", data::splitName(split)},
-                           {"samples", evaluation.metrics["samples"]},
-                           {"vertex_error_cm", evaluation.metrics["vertex_error_cm"]}};
-  });
+  const eval::DemoModel& model = own.model;
+  const learn::TrainingData& data = own.data;
+  writePng(model.folder / "training.png",
+           renderTrainingCurves(model.trained.networks.front(),
+                                own.garment.name + " patch " + std::to_string(model.trained.networks.front().patch)));
+  std::vector<core::RgbImage> pictures;
+  for (size_t k = 0; k < own.shown.size(); ++k) {
+    const int row = own.shown[k];
+    body::Body posed = body;
+    posed.mesh = body.posedMesh(body::Pose::fromLeading(data.inputs.row(row).head(data.poseSize).transpose()));
+    garment::Garment truth = data.garment, guess = data.garment;
+    truth.mesh.V = data.truth[row].cast<double>();
+    guess.mesh.V = model.shown.positions[k];
+    core::RgbImage left = renderGarmentOnBody(truth, &posed, 240), right = renderGarmentOnBody(guess, &posed, 240);
+    drawText(left, {8, 8}, "ground truth", {0, 0, 0}, 2);
+    std::ostringstream label;
+    label << std::fixed << std::setprecision(2) << "patches "
+          << core::meanVertexErrorCm(model.shown.positions[k], data.truth[row]) << " cm";
+    drawText(right, {8, 8}, label.str(), {0, 0, 0}, 2);
+    pictures.push_back(left);
+    pictures.push_back(right);
+  }
+  writePng(own.folder / "predictions.png", contactSheet(pictures, 2));
+  figures["learning"] = {{"model", "patch"},
+                         {"networks", model.trained.networks.size()},
+                         {"width", model.options.model.width},
+                         {"epochs", model.options.epochs},
+                         {"seconds", model.trained.seconds},
+                         {"split", data::splitName(model.split)},
+                         {"samples", model.evaluation.metrics["samples"]},
+                         {"vertex_error_cm", model.evaluation.metrics["vertex_error_cm"]}};
   std::ostringstream text;
   text << std::fixed << std::setprecision(2);
   const nlohmann::json& f = figures;

@@ -12,11 +12,14 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "pixelcloth/data/dataset.h"
 #include "pixelcloth/stitch/evaluate.h"
+#include "pixelcloth/stitch/pca_filter.h"
 
 namespace pixelcloth::eval {
 
@@ -73,6 +76,13 @@ struct ModelFigures {
   /// Per stitch mode on the test split (the first is the plain mean); metrics as stitch::evaluate's.
   std::vector<stitch::Evaluation> test;
 };
+
+/// Fills `figures`' train and test figures for the model in `figures.folder` on `dataset`: the train split, and the
+/// test split (the train split when the dataset has no test split) stitched by each of `modes` (none: the plain mean);
+/// `pca` is the filter of pca modes.
+void measureModel(ModelFigures& figures, const data::DatasetFolder& dataset,
+                  const std::vector<stitch::StitchMode>& modes = {},
+                  std::shared_ptr<const stitch::PcaFilter> pca = nullptr);
 
 /// The learned refinement with markers of one noise level (the paper's Sec. 5.2 residual networks).
 struct RefinementFigures {

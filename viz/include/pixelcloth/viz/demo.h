@@ -1,24 +1,16 @@
 #pragma once
 
-// The demo's sections: each runs one stage on the built-in body and garments through the library, draws its pictures
-// and adds its figures and a section to the report. `pixelcloth demo` calls them in order.
+// The demo's sections: each draws one stage on the built-in body and garments, adds its figures and a section to the
+// report. The cheap stages (the body, garments, cage, bases, dressing) run here; what simulates, trains or chooses a
+// model runs in eval/demo.h and comes here as its typed result. `pixelcloth demo` calls them in order.
 
 #include <cstdint>
 
 #include "pixelcloth/body/body.h"
+#include "pixelcloth/eval/demo.h"
 #include "pixelcloth/viz/report.h"
 
 namespace pixelcloth::viz {
-
-/// How much the demo does.
-struct DemoOptions {
-  int poses = 12;          ///< random poses shown
-  int filterPoses = 200;   ///< poses drawn, pruned and simulated for the filtering histograms
-  int tshirtSamples = 40;  ///< the simulated T-shirt dataset; its test split is rebuilt from markers
-  int learningEpochs = 8;  ///< epochs of each learned model on that dataset
-  int ownGarmentSamples = 20;  ///< the simulated dataset of the imported garment (demoOwnGarment)
-  std::uint64_t seed = 1;
-};
 
 /// The built-in mannequin, its folder (body/) and its sheet: shaded with skeleton, skin weights, parts.
 body::Body demoBody(Report& report);
@@ -32,8 +24,8 @@ void demoShapes(Report& report, const body::Body& body);
 /// One pose with the bone-heat weights and with corrupted upper-arm weights (skinning_artifacts.png).
 void demoSkinningArtifacts(Report& report, const body::Body& body);
 
-/// `demo.poses` poses from the appendix sampler, skinned (poses/).
-void demoPoses(Report& report, const body::Body& body, const DemoOptions& demo);
+/// `count` poses from the appendix sampler, skinned (poses/).
+void demoPoses(Report& report, const body::Body& body, int count, std::uint64_t seed);
 
 /// An A-posed copy of the body written as OBJ + joints JSON and imported back (import/).
 void demoBodyImport(Report& report, const body::Body& body);
@@ -50,39 +42,37 @@ void demoBases(Report& report);
 /// A cage-driven fill of the T-shirt rasterised to cloth images, then edited (images/).
 void demoClothImages(Report& report);
 
-/// Both garments dressed on the body (dressing/).
-void demoDressing(Report& report, const body::Body& body);
+/// The dressed garments' folders and pictures (dressing/).
+void demoDressing(Report& report, const body::Body& body, const std::vector<eval::DressedGarment>& dressed);
 
-/// A simulated T-shirt dataset of `demo.tshirtSamples` samples, checked, with a contact sheet (dataset_tshirt/).
-void demoTShirtDataset(Report& report, const body::Body& body, const DemoOptions& demo);
+/// The simulated T-shirt dataset: a contact sheet (dataset_tshirt/contact_sheet.png) and its figures.
+void demoTShirtDataset(Report& report, const body::Body& body, const eval::SimulatedDataset& made);
 
-/// The T-shirt dataset's test split rebuilt from markers by every method (reconstruction/); needs demoTShirtDataset.
-void demoReconstruction(Report& report, const body::Body& body);
+/// The T-shirt dataset's test split rebuilt from markers by every method: error maps and the rebuilt shirts beside
+/// ground truth (reconstruction/).
+void demoReconstruction(Report& report, const body::Body& body, const eval::DemoReconstruction& made);
 
-/// A T-shirt OBJ written as other cloth programs write theirs (tube sleeves, Z up, centimetres, another origin),
-/// imported without a cage file, fitted to the body (cage lines and patches), and taken through dressing,
-/// `demo.ownGarmentSamples` simulated samples, marker reconstruction, per-patch decoders, prediction and evaluation
-/// (own_garment/); needs demoBody's folder.
-void demoOwnGarment(Report& report, const body::Body& body, const DemoOptions& demo);
+/// A garment brought as another program's OBJ, through the pipeline: its pattern with the fitted cage lines, its
+/// dressing, a prediction beside ground truth (own_garment/).
+void demoOwnGarment(Report& report, const body::Body& body, const eval::OwnGarment& own);
 
-/// A simulated necktie dataset of 6 samples, checked, with a contact sheet (dataset_necktie/).
-void demoNecktieDataset(Report& report, const body::Body& body, const DemoOptions& demo);
+/// The simulated necktie dataset: a contact sheet (dataset_necktie/contact_sheet.png) and its figures.
+void demoNecktieDataset(Report& report, const body::Body& body, const eval::SimulatedDataset& made);
 
-/// `demo.filterPoses` sampler draws simulated on the T-shirt; joint-angle histograms before and after filtering.
-void demoPoseSampling(Report& report, const body::Body& body, const DemoOptions& demo);
+/// Joint-angle histograms of the sampler's draws before and after pruning and simulation (poses/).
+void demoPoseSampling(Report& report, const eval::PoseFiltering& filtering);
 
 /// The paper's decoders and the fully connected baselines at full and quarter width: parameters, shapes and forward
-/// cost, and one forward pass of each quarter-width decoder timed on this machine.
-void demoNetworks(Report& report);
+/// cost, one forward pass of each quarter-width decoder timed on this machine, and the training curves of `necktie`
+/// (model_necktie/training.png).
+void demoNetworks(Report& report, const learn::TrainReport& necktie);
 
-/// The learned models on the T-shirt dataset (needs demoTShirtDataset): a whole-garment decoder, the 28 patch
-/// decoders and the residual patch decoders on the marker reconstruction of each sample, trained briefly and
-/// compared on the test split with the marker reconstruction alone.
-void demoLearning(Report& report, const body::Body& body, const DemoOptions& demo);
+/// The learned models on the T-shirt dataset beside ground truth and the marker reconstruction alone
+/// (learning/predictions.png, learning/error_maps.png, each model's training.png).
+void demoLearning(Report& report, const body::Body& body, const eval::DemoLearning& learning);
 
-/// The patch decoders of demoLearning stitched every way (mean, feather, the PCA filter at the k the regularisation
-/// split chooses, a GAN blender trained here) and measured on the test split, with the paper's tables (losses, whole
-/// against patches, the baselines in three spaces) trained here: seams/report.md and its pictures.
-void demoSeams(Report& report, const body::Body& body, const DemoOptions& demo);
+/// The seam report of the stitched patch decoders with the paper's tables on the demo's shirts (seams/report.md and
+/// its pictures).
+void demoSeams(Report& report, const body::Body& body, const eval::DemoSeams& seams);
 
 }  // namespace pixelcloth::viz

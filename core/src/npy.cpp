@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char kMagic[] = "\x93NUMPY";
+const char kNpyMagic[] = "\x93NUMPY";
 constexpr size_t kMagicSize = 6;
 
 int itemSizeOf(const std::string& dtype) {
@@ -214,7 +214,7 @@ NpyHeader readNpyHeader(const fs::path& path) {
 
   unsigned char preamble[12] = {};
   in.read(reinterpret_cast<char*>(preamble), 8);
-  PIXELCLOTH_CHECK(in && std::memcmp(preamble, kMagic, kMagicSize) == 0,
+  PIXELCLOTH_CHECK(in && std::memcmp(preamble, kNpyMagic, kMagicSize) == 0,
                    file << ": not a NumPy .npy file (bad magic: expected \\x93NUMPY)");
   const int major = preamble[6];
   PIXELCLOTH_CHECK(major >= 1 && major <= 3, file << ": unsupported .npy format version " << major << "."
@@ -280,7 +280,7 @@ std::string npyPreamble(const std::string& dtype, const std::vector<std::int64_t
   const size_t preambleSize = version2 ? 12 : 10;
   header.append((64 - (preambleSize + header.size() + 1) % 64) % 64, ' ');
   header += '\n';
-  std::string preamble(kMagic, kMagicSize);
+  std::string preamble(kNpyMagic, kMagicSize);
   preamble += static_cast<char>(version2 ? 2 : 1);
   preamble += '\0';
   for (size_t i = 0; i < preambleSize - 8; ++i) preamble += static_cast<char>((header.size() >> (8 * i)) & 0xff);

@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char kMagic[8] = {'P', 'X', 'T', 'E', 'N', 'S', 'O', 'R'};
+const char kTensorFileMagic[8] = {'P', 'X', 'T', 'E', 'N', 'S', 'O', 'R'};
 constexpr std::uint32_t kVersion = 1;
 constexpr std::size_t kPreamble = 24;
 constexpr std::uint64_t kAlignment = 64;
@@ -138,7 +138,7 @@ void writeTensorFile(const fs::path& path, const TensorFile& file) {
   }
   header.resize(reserved, ' ');  // JSON allows trailing white space; the data then starts where the offsets say
 
-  std::string out(kMagic, sizeof kMagic);
+  std::string out(kTensorFileMagic, sizeof kTensorFileMagic);
   appendU32(out, kVersion);
   appendU32(out, static_cast<std::uint32_t>(header.size()));
   appendU32(out, crc32Of(header.data(), header.size()));
@@ -161,7 +161,7 @@ TensorFile readTensorFile(const fs::path& path, const std::string& kind) {
                             "did not write: train the model again");
   PIXELCLOTH_CHECK(bytes.size() >= kPreamble, name << ": " << bytes.size() << " bytes, truncated (a pixelcloth tensor "
                                                             "file starts with a " << kPreamble << "-byte preamble)");
-  PIXELCLOTH_CHECK(bytes.compare(0, sizeof kMagic, kMagic, sizeof kMagic) == 0,
+  PIXELCLOTH_CHECK(bytes.compare(0, sizeof kTensorFileMagic, kTensorFileMagic, sizeof kTensorFileMagic) == 0,
                    name << ": not a pixelcloth tensor file (it does not start with PXTENSOR)");
   const std::uint32_t version = readU32(bytes, 8), headerSize = readU32(bytes, 12), headerCrc = readU32(bytes, 16);
   PIXELCLOTH_CHECK(version == kVersion,

@@ -31,12 +31,6 @@ using Tag = dnnl::memory::format_tag;
 using Dims = dnnl::memory::dims;
 constexpr auto kF32 = dnnl::memory::data_type::f32;
 
-std::int64_t product(const std::vector<std::int64_t>& shape) {
-  std::int64_t n = 1;
-  for (std::int64_t d : shape) n *= d;
-  return n;
-}
-
 std::vector<float> copyOf(const torch::Tensor& t) {
   const torch::Tensor c = t.detach().to(torch::kCPU, torch::kFloat32).contiguous();
   return std::vector<float>(c.data_ptr<float>(), c.data_ptr<float>() + c.numel());
@@ -91,7 +85,7 @@ std::vector<Op> opsOf(const Model& model) {
   // The BatchNorm after an inner product acts on its output unflattened; `ops.back().out` keeps the flat size.
   for (const std::shared_ptr<torch::nn::Module>& child : net->children()) {
     if (const auto* linear = child->as<torch::nn::LinearImpl>()) {
-      Op op{Op::Kind::InnerProduct, {product(shape)}, {linear->options.out_features()}};
+      Op op{Op::Kind::InnerProduct, {elementCount(shape)}, {linear->options.out_features()}};
       op.weights = copyOf(linear->weight);
       op.bias = copyOf(linear->bias);
       shape = op.out;
@@ -138,7 +132,7 @@ std::vector<Op> opsOf(const Model& model) {
       PIXELCLOTH_ASSERT(!ops.empty(), "ReLU without a layer before it");
       ops.back().relu = true;
     } else if (const auto* pca = child->as<PcaDecodeImpl>()) {  // mean + c B: an inner product with B^T
-      Op op{Op::Kind::InnerProduct, {product(shape)}, {pca->basis.size(1)}};
+      Op op{Op::Kind::InnerProduct, {elementCount(shape)}, {pca->basis.size(1)}};
       op.weights = copyOf(pca->basis.t());
       op.bias = copyOf(pca->mean);
       shape = op.out;
@@ -209,7 +203,7 @@ struct Workspace {
 };
 
 /// A network's folded ops and its weights in each layout a program asked for.
-struct Network {
+struct EngineNetwork {
   std::vector<Op> ops;
   std::vector<dnnl::memory> bias;
   /// Per op and part (index 5 op + part + 1; part -1 is the op's own weights).
@@ -239,17 +233,17 @@ struct CompiledNetworks::Impl {
   ModelSpec spec;
   int threads = 1;
   dnnl::engine engine{dnnl::engine::kind::cpu, 0};
-  std::vector<Network> networks;
+  std::vector<EngineNetwork> networks;
   std::map<std::int64_t, Program> programs;                     ///< by batch size
   std::map<std::int64_t, std::vector<Workspace>> workspaces;    ///< by batch size, one per worker
 
   int workers() const { return static_cast<int>(networks.size()) >= threads ? threads : 1; }
   const Program& program(std::int64_t batch);
-  const dnnl::memory& weightsOf(Network& network, int op, int part, const dnnl::memory::desc& desc);
+  const dnnl::memory& weightsOf(EngineNetwork& network, int op, int part, const dnnl::memory::desc& desc);
   /// `partsAtOnce`: how many of a transposed convolution's four parts run side by side (1: one after another).
-  void run(const Program& program, Workspace& workspace, Network& network, const float* input, float* output,
+  void run(const Program& program, Workspace& workspace, EngineNetwork& network, const float* input, float* output,
            int partsAtOnce);
-  void execute(const Program& program, Workspace& workspace, Network& network, size_t step, dnnl::stream& stream);
+  void execute(const Program& program, Workspace& workspace, EngineNetwork& network, size_t step, dnnl::stream& stream);
 };
 
 const Program& CompiledNetworks::Impl::program(std::int64_t batch) {
@@ -414,7 +408,7 @@ const Program& CompiledNetworks::Impl::program(std::int64_t batch) {
       space.scratchpads.emplace_back(step.scratchpad, engine, space.scratch.data() + std::max(step.part, 0) * stride);
     spaces.push_back(std::move(space));
   }
-  for (Network& network : networks)
+  for (EngineNetwork& network : networks)
     for (const Step& step : program.steps)
       if (step.fewChannel && network.packedBlock[step.op] != step.block) {
         const Op& op = network.ops[step.op];
@@ -427,7 +421,7 @@ const Program& CompiledNetworks::Impl::program(std::int64_t batch) {
   return programs.emplace(batch, std::move(program)).first->second;
 }
 
-const dnnl::memory& CompiledNetworks::Impl::weightsOf(Network& network, int op, int part,
+const dnnl::memory& CompiledNetworks::Impl::weightsOf(EngineNetwork& network, int op, int part,
                                                      const dnnl::memory::desc& desc) {
   std::vector<std::pair<dnnl::memory::desc, dnnl::memory>>& cached = network.weights[5 * op + part + 1];
   for (const auto& [d, memory] : cached)
@@ -461,7 +455,7 @@ const dnnl::memory& CompiledNetworks::Impl::weightsOf(Network& network, int op, 
   return cached.back().second;
 }
 
-void CompiledNetworks::Impl::run(const Program& program, Workspace& space, Network& network, const float* input,
+void CompiledNetworks::Impl::run(const Program& program, Workspace& space, EngineNetwork& network, const float* input,
                                  float* output, int partsAtOnce) {
   dnnl::stream stream(engine);
   space.slots[0].set_data_handle(const_cast<float*>(input));
@@ -511,7 +505,7 @@ void CompiledNetworks::Impl::run(const Program& program, Workspace& space, Netwo
   stream.wait();
 }
 
-void CompiledNetworks::Impl::execute(const Program& program, Workspace& space, Network& network, size_t s,
+void CompiledNetworks::Impl::execute(const Program& program, Workspace& space, EngineNetwork& network, size_t s,
                                      dnnl::stream& stream) {
   const Step& step = program.steps[s];
   std::unordered_map<int, dnnl::memory> args{{DNNL_ARG_SRC, space.slots[step.src]},
@@ -540,7 +534,7 @@ CompiledNetworks::CompiledNetworks(const std::vector<const Model*>& models, int 
                                                                 << s.width << " vs "
                                                                 << architectureName(impl_->spec.architecture)
                                                                 << " width " << impl_->spec.width << ")");
-    Network network;
+    EngineNetwork network;
     network.ops = opsOf(*model);
     network.weights.resize(5 * network.ops.size());
     network.packed.resize(network.ops.size());
@@ -567,7 +561,7 @@ void CompiledNetworks::forward(const RowsF& inputs, std::vector<RowsF>& outputs)
   const std::int64_t batch = inputs.rows();
   const Program& program = impl_->program(batch);
   std::vector<Workspace>& spaces = impl_->workspaces[batch];
-  const std::int64_t values = product(impl_->networks.front().ops.back().out);
+  const std::int64_t values = elementCount(impl_->networks.front().ops.back().out);
   outputs.resize(impl_->networks.size());
   for (RowsF& o : outputs) o.resize(batch, values);
   const int workers = impl_->workers(), networks = size();

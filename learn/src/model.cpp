@@ -126,12 +126,6 @@ std::vector<Layer> planOf(const ModelSpec& spec) {
   return plan.layers();
 }
 
-std::int64_t product(const std::vector<std::int64_t>& shape) {
-  std::int64_t n = 1;
-  for (std::int64_t d : shape) n *= d;
-  return n;
-}
-
 LayerSummary summaryOf(const Layer& l, const std::vector<std::int64_t>& input) {
   LayerSummary s;
   s.output = l.shape;
@@ -159,7 +153,7 @@ LayerSummary summaryOf(const Layer& l, const std::vector<std::int64_t>& input) {
     case Layer::Kind::BatchNorm:
       s.name = "batch_norm " + std::to_string(l.out);
       s.parameters = 2 * l.out;
-      s.flops = 2.0 * product(l.shape);
+      s.flops = 2.0 * elementCount(l.shape);
       break;
     case Layer::Kind::ReLU:
       s.name = "relu";

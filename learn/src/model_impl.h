@@ -8,6 +8,13 @@
 
 namespace pixelcloth::learn {
 
+/// The number of elements of a tensor of `shape`.
+inline std::int64_t elementCount(const std::vector<std::int64_t>& shape) {
+  std::int64_t n = 1;
+  for (std::int64_t d : shape) n *= d;
+  return n;
+}
+
 /// Where models run: the GPU when this LibTorch build has CUDA and one is present (Debian's is CPU-only), else the CPU.
 inline torch::Device defaultDevice() { return torch::cuda::is_available() ? torch::kCUDA : torch::kCPU; }
 

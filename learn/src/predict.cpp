@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Network {
+struct LoadedNetwork {
   int patch = -1;
   nlohmann::json sidecar;
   Model model;
@@ -57,7 +57,7 @@ fs::path trainingDatasetOf(const fs::path& modelFolder) {
 
 struct TrainedModel::Impl {
   fs::path folder;
-  std::vector<Network> networks;
+  std::vector<LoadedNetwork> networks;
   Engine engine = Engine::OneDnn;
   std::unique_ptr<CompiledNetworks> compiled;  ///< the oneDNN engine's networks
 };
@@ -93,7 +93,7 @@ TrainedModel::TrainedModel(const fs::path& folder, const garment::Garment& garme
                        context << ": trained with other settings than "
                                << (impl_->folder / patchFolderName(impl_->networks.front().patch) / "model.json").string()
                                << " (architecture, width, dataset, space or base differ)");
-    Network network{patch ? patch->id : -1, sidecar, Model(spec), targetOf(spec.architecture, garment, patch)};
+    LoadedNetwork network{patch ? patch->id : -1, sidecar, Model(spec), targetOf(spec.architecture, garment, patch)};
     network.target->to(ModelAccess::device(network.model));
     PIXELCLOTH_CHECK(summarize(spec).output == network.target->shape(),
                      context << ": its output does not fit the " << garment.name);
@@ -104,7 +104,7 @@ TrainedModel::TrainedModel(const fs::path& folder, const garment::Garment& garme
   }
   if (engine == Engine::OneDnn) {
     std::vector<const Model*> models;
-    for (const Network& n : impl_->networks) models.push_back(&n.model);
+    for (const LoadedNetwork& n : impl_->networks) models.push_back(&n.model);
     impl_->compiled = std::make_unique<CompiledNetworks>(models, threads);
   }
 }
@@ -131,7 +131,7 @@ fs::path TrainedModel::baseFolder() const {
 
 std::vector<int> TrainedModel::patches() const {
   std::vector<int> ids;
-  for (const Network& n : impl_->networks)
+  for (const LoadedNetwork& n : impl_->networks)
     if (n.patch >= 0) ids.push_back(n.patch);
   return ids;
 }
@@ -158,7 +158,7 @@ std::vector<NetworkPrediction> TrainedModel::predict(const Eigen::MatrixXf& inpu
     std::vector<RowsF> outputs;
     impl_->compiled->forward(inputs, outputs);
     for (size_t k = 0; k < impl_->networks.size(); ++k) {
-      const Network& n = impl_->networks[k];
+      const LoadedNetwork& n = impl_->networks[k];
       std::vector<std::int64_t> shape{inputs.rows()};
       for (std::int64_t d : n.target->shape()) shape.push_back(d);
       const torch::Tensor output = torch::from_blob(outputs[k].data(), shape, torch::kFloat32);
@@ -168,7 +168,7 @@ std::vector<NetworkPrediction> TrainedModel::predict(const Eigen::MatrixXf& inpu
     return out;
   }
   const torch::Tensor x = toTensor(inputs);
-  for (Network& n : impl_->networks) {
+  for (LoadedNetwork& n : impl_->networks) {
     torch::nn::Sequential& net = ModelAccess::network(n.model);
     net->eval();
     const torch::Tensor values = n.target->decode(net->forward(x.to(ModelAccess::device(n.model))));  // B x n x 3

@@ -34,7 +34,6 @@ const Eigen::Vector3d kNecklineOffset(-0.0019, -0.0055, 0.0286);
 constexpr const char* kDressed = "pixelcloth_fit_dressed";
 
 Eigen::Vector3d dressedOf(const Garment& g, int v) { return g.mesh.vertexAttributes.at(kDressed).row(v).transpose(); }
-Eigen::Vector2d uvOf(const Garment& g, int v, int layout) { return g.mesh.UV.row(g.vertexUV(v, layout)).transpose(); }
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// The vertex at a + t (b - a) on the edge (a, b): a itself or b itself within `snap` of them, else a new vertex
@@ -96,7 +95,7 @@ std::optional<int> loopCrossing(Garment& g, const std::vector<int>& loop, int la
     const double fa = field(a), fb = field(b);
     if (!crosses(fa, fb) || faceLayoutOfEdge(g, a, b) != layout) continue;
     const double t = fa == fb ? 0.0 : fa / (fa - fb);
-    const double distance = ((1 - t) * uvOf(g, a, layout) + t * uvOf(g, b, layout) - near).norm();
+    const double distance = ((1 - t) * g.uvOf(a, layout) + t * g.uvOf(b, layout) - near).norm();
     if (distance < bestDistance) bestDistance = distance, bestA = a, bestB = b, bestFa = fa, bestFb = fb;
   }
   if (bestA < 0) return std::nullopt;
@@ -194,7 +193,7 @@ class Fitter {
       const Eigen::Vector2d middle = g_.layoutBounds(layout).center();
       const std::optional<int> top = loopCrossing(g_, neckLoop, layout, field, middle, options_.snap);
       if (!top) continue;
-      const std::optional<int> bottom = loopCrossing(g_, hemLoop, layout, field, uvOf(g_, *top, layout), options_.snap);
+      const std::optional<int> bottom = loopCrossing(g_, hemLoop, layout, field, g_.uvOf(*top, layout), options_.snap);
       if (!bottom) continue;
       add(CageLine{name, garment::CurveKind::CentreLine,
                    garment::insertPatternLine(g_, layout, *top, *bottom, options_.snap), false});
@@ -220,7 +219,7 @@ class Fitter {
     const int centreVertex = meetingVertex(centreChain, loop);
     if (layout < 0 || centreVertex < 0) return skip("side_panel_" + side, "the centre line does not cross the chest loop");
     const Eigen::Vector2d down =
-        (uvOf(g_, centreChain.back(), layout) - uvOf(g_, centreChain.front(), layout)).normalized();
+        (g_.uvOf(centreChain.back(), layout) - g_.uvOf(centreChain.front(), layout)).normalized();
     const double centreX = dressedOf(g_, centreVertex).x();
     // The chest loop's stretch in this layout, from the centre vertex outwards in both directions.
     const auto at = std::find(loop.begin(), loop.end(), centreVertex);
@@ -235,19 +234,19 @@ class Fitter {
       if (stretch.size() < 2) continue;
       double length = 0;
       for (size_t k = 0; k + 1 < stretch.size(); ++k)
-        length += (uvOf(g_, stretch[k + 1], layout) - uvOf(g_, stretch[k], layout)).norm();
+        length += (g_.uvOf(stretch[k + 1], layout) - g_.uvOf(stretch[k], layout)).norm();
       const double target = options_.sidePanelFraction * length;
       double walked = 0;
       int start = -1;
       for (size_t k = 0; k + 1 < stretch.size() && start < 0; ++k) {
-        const double edge = (uvOf(g_, stretch[k + 1], layout) - uvOf(g_, stretch[k], layout)).norm();
+        const double edge = (g_.uvOf(stretch[k + 1], layout) - g_.uvOf(stretch[k], layout)).norm();
         if (walked + edge >= target) start = vertexAtCrossing(g_, stretch[k], stretch[k + 1], walked - target,
                                                               walked + edge - target, options_.snap);
         walked += edge;
       }
       if (start < 0) continue;
-      const Eigen::Vector2d p = uvOf(g_, start, layout);
-      auto field = [&](int v) { return cross2(down, uvOf(g_, v, layout) - p); };
+      const Eigen::Vector2d p = g_.uvOf(start, layout);
+      auto field = [&](int v) { return cross2(down, g_.uvOf(v, layout) - p); };
       auto fieldOrFar = [&](int v) { return g_.vertexUV(v, layout) >= 0 ? field(v) : 1.0; };
       const std::optional<int> end = loopCrossing(g_, hem->vertices, layout, fieldOrFar, p, options_.snap);
       const std::string hand = dressedOf(g_, start).x() > centreX ? "left" : "right";
@@ -305,14 +304,14 @@ class Fitter {
   ChainPoint raisedForBand(const std::vector<int>& chain, ChainPoint point) const {
     for (int layout = 0; layout < g_.numLayouts(); ++layout) {
       if (g_.vertexUV(chain.front(), layout) < 0 || g_.vertexUV(chain.back(), layout) < 0) continue;
-      const Eigen::Vector2d up = (uvOf(g_, chain.front(), layout) - uvOf(g_, chain.back(), layout)).normalized();
+      const Eigen::Vector2d up = (g_.uvOf(chain.front(), layout) - g_.uvOf(chain.back(), layout)).normalized();
       double top = -std::numeric_limits<double>::infinity();
       for (int v = 0; v < g_.mesh.numVertices(); ++v)
-        if (g_.vertexUV(v, layout) >= 0) top = std::max(top, uvOf(g_, v, layout).dot(up));
+        if (g_.vertexUV(v, layout) >= 0) top = std::max(top, g_.uvOf(v, layout).dot(up));
       const double lowest =
           top - 0.97 * options_.patchPixels * layoutFrame(g_, layout, options_.imageSize).metresPerPixel;
       const std::optional<ChainPoint> budget =
-          chainCrossing(chain, [&](int v) { return lowest - uvOf(g_, v, layout).dot(up); });
+          chainCrossing(chain, [&](int v) { return lowest - g_.uvOf(v, layout).dot(up); });
       if (budget && budget->position() < point.position()) point = *budget;
     }
     std::vector<double> walked(chain.size(), 0.0);
@@ -334,7 +333,7 @@ class Fitter {
   void splitPatch(const Patch& patch) {
     const int layout = patch.layout;
     Eigen::AlignedBox2d box;
-    for (int v : patch.vertices) box.extend(uvOf(g_, v, layout));
+    for (int v : patch.vertices) box.extend(g_.uvOf(v, layout));
     // Across the longer side through the box's centre: the line's normal is the longer axis.
     const int axis = box.sizes().x() >= box.sizes().y() ? 0 : 1;
     const double cut = box.center()[axis];
@@ -347,7 +346,7 @@ class Fitter {
     const std::vector<int>& loop = patch.boundary;
     for (size_t i = 0; i < loop.size(); ++i) {
       const int a = loop[i], b = loop[(i + 1) % loop.size()];
-      const Eigen::Vector2d pa = uvOf(g_, a, layout), pb = uvOf(g_, b, layout);
+      const Eigen::Vector2d pa = g_.uvOf(a, layout), pb = g_.uvOf(b, layout);
       const double fa = pa[axis] - cut, fb = pb[axis] - cut;
       if (!crosses(fa, fb)) continue;
       const double t = fa == fb ? 0.0 : fa / (fa - fb);

@@ -18,11 +18,6 @@ namespace {
 using Edge = std::pair<int, int>;
 Edge key(int a, int b) { return std::minmax(a, b); }
 
-/// UV of garment vertex v in layout l.
-Eigen::Vector2d uvOf(const garment::Garment& garment, int v, int layout) {
-  int row = garment.vertexUV(v, layout);
-  return garment.mesh.UV.row(row).transpose();
-}
 }  // namespace
 
 std::vector<Patch> garmentPatches(const garment::Garment& garment) {
@@ -91,7 +86,7 @@ std::vector<Patch> segmentPatches(const garment::Garment& garment, const std::ve
   std::vector<std::tuple<int, double, double, size_t>> order;
   for (size_t i = 0; i < patches.size(); ++i) {
     Eigen::AlignedBox2d box;
-    for (int u : patches[i].vertices) box.extend(uvOf(garment, u, patches[i].layout));
+    for (int u : patches[i].vertices) box.extend(garment.uvOf(u, patches[i].layout));
     order.emplace_back(patches[i].layout, -std::round(box.max().y() / kRowStep), box.center().x(), i);
   }
   std::sort(order.begin(), order.end());
@@ -111,7 +106,7 @@ PatchMesh patchMesh(const garment::Garment& garment, const Patch& patch) {
     out.globalVertex.push_back(v);
   }
   out.uv.resize(patch.vertices.size(), 2);
-  for (size_t i = 0; i < patch.vertices.size(); ++i) out.uv.row(i) = uvOf(garment, patch.vertices[i], patch.layout);
+  for (size_t i = 0; i < patch.vertices.size(); ++i) out.uv.row(i) = garment.uvOf(patch.vertices[i], patch.layout);
   out.F.resize(patch.faces.size(), 3);
   for (size_t i = 0; i < patch.faces.size(); ++i)
     for (int k = 0; k < 3; ++k) out.F(i, k) = local.at(garment.mesh.F(patch.faces[i], k));

@@ -21,11 +21,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-core::Color toColor(const Eigen::Vector3d& c) {
-  auto byte = [](double x) { return static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(x, 0.0, 1.0))); };
-  return {byte(c.x()), byte(c.y()), byte(c.z())};
-}
-
 /// Top view of the heights over the square: pixel (x, y) shows pattern point (u, v) with v up. Colour ramp over
 /// [-amplitude, amplitude] (diverging: blue below, white at 0, red above), contour lines every amplitude / 5.
 core::RgbImage heightMapImage(const PatchMesh& patch, const Eigen::VectorXd& height, double side, double amplitude,

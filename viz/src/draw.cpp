@@ -170,4 +170,10 @@ void drawText(RgbImage& image, const Eigen::Vector2i& position, const std::strin
   }
 }
 
+core::Color toColor(const Eigen::Vector3d& rgb) {
+  core::Color out;
+  for (int i = 0; i < 3; ++i) out[i] = static_cast<std::uint8_t>(std::lround(255 * std::clamp(rgb[i], 0.0, 1.0)));
+  return out;
+}
+
 }  // namespace pixelcloth::viz

@@ -17,12 +17,6 @@ namespace pixelcloth::viz {
 using namespace cage;
 
 namespace {
-core::Color toColor(const Eigen::Vector3d& c) {
-  core::Color out;
-  for (int i = 0; i < 3; ++i) out[i] = static_cast<std::uint8_t>(std::lround(255 * std::clamp(c[i], 0.0, 1.0)));
-  return out;
-}
-
 /// Blue (compressed to half the area or less) - white (none) - red (stretched to twice or more).
 core::Color distortionColor(double areaRatio) {
   const double l = std::clamp(std::log2(std::max(areaRatio, 1e-12)), -1.0, 1.0);

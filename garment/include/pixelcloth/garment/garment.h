@@ -116,6 +116,8 @@ struct Garment {
   /// #V x #layouts: row of `mesh.UV` that vertex v has in layout l, or -1 where v is not part of that layout.
   /// Vertices on stitched seams have one UV in each layout.
   Eigen::MatrixXi vertexUV;
+  /// The pattern position of vertex v in layout l (`mesh.UV` at vertexUV(v, l), which must not be -1).
+  Eigen::Vector2d uvOf(int v, int layout) const { return mesh.UV.row(vertexUV(v, layout)).transpose(); }
   std::vector<Seam> seams;
   std::vector<Opening> openings;
   std::vector<CageLine> lines;  ///< cage lines other than seams and openings (see CageLine)

@@ -33,4 +33,7 @@ Eigen::Vector2i textExtent(const std::string& text, int scale = 1);
 /// A color from a categorical palette of 12 well-separated colors (index taken modulo 12).
 core::Color paletteColor(int index);
 
+/// An RGB colour of three values in [0, 1] (clamped) as bytes.
+core::Color toColor(const Eigen::Vector3d& rgb);
+
 }  // namespace pixelcloth::viz

@@ -38,6 +38,10 @@ void registerModel(CLI::App& app) {
       ->check(CLI::IsMember({"whole", "patch", "necktie", "fc", "fc-pca"}));
   verb->add_option("--width", args->spec.width, "Multiplier of every channel count (e.g. 0.25 for CPU runs), (0, 4]")
       ->capture_default_str();
+  verb->add_option("--min-channels", args->spec.minChannels,
+                   "Decoders: channels an upsampling layer keeps at the least, whatever the width; 0: the plain "
+                   "multiplier")
+      ->capture_default_str();
   verb->add_option("--inputs", args->spec.inputSize,
                    "Floats in (pose plus marker features); 0: the pose alone (90, the necktie 36)")
       ->capture_default_str();
@@ -48,8 +52,9 @@ void registerModel(CLI::App& app) {
       ->capture_default_str();
   verb->add_option("--components", args->spec.pcaComponents, "fc-pca: PCA coefficients decoded through the basis")
       ->capture_default_str();
-  verb->add_flag("--summary", args->summary,
-                 "Print one JSON object: architecture, width, parameters, input, output, gflop_forward, layers");
+  verb->add_flag(
+      "--summary", args->summary,
+      "Print one JSON object: architecture, width, min_channels, parameters, input, output, gflop_forward, layers");
   verb->callback([args] { runModel(*args); });
 }
 

@@ -18,7 +18,8 @@ namespace pixelcloth::apps {
 
 namespace {
 struct TrainArgs {
-  std::string dataset, out, model = "whole", patches = "all", space, residual, patchModel, loss = "l1";
+  std::string dataset, out, model = "whole", patches = "all", space, residual, patchModel, loss = "l1",
+                            targetScaling = "none";
   bool quiet = false;
   learn::TrainOptions options;
   stitch::GanOptions gan;
@@ -52,8 +53,8 @@ void runTrainGan(TrainArgs args, const CLI::App& verb) {
   PIXELCLOTH_CHECK(!args.patchModel.empty(),
                    "train --model gan: give the patch model to blend with --patch-model DIR (pixelcloth train --model "
                    "patch --out DIR)");
-  for (const char* option : {"--patches", "--components", "--space", "--residual", "--loss", "--normal-weight",
-                             "--edge-weight", "--networks-at-once"})
+  for (const char* option : {"--patches", "--components", "--space", "--residual", "--loss", "--target-scaling",
+                             "--min-channels", "--normal-weight", "--edge-weight", "--networks-at-once"})
     PIXELCLOTH_CHECK(verb.count(option) == 0, "train --model gan: " << option << " is not an option of the blender "
                                                                     << "(it takes the space and base of --patch-model)");
   stitch::GanOptions& gan = args.gan;
@@ -79,6 +80,7 @@ void runTrain(TrainArgs args, const CLI::App& verb) {
   if (args.quiet) core::setLogLevel(core::LogLevel::Warning);
   if (args.model == "gan") return runTrainGan(std::move(args), verb);
   args.options.loss = learn::imageLossFromName(args.loss, "train --loss");
+  args.options.targetScaling = learn::targetScalingFromName(args.targetScaling, "train --target-scaling");
   PIXELCLOTH_CHECK(args.patchModel.empty() && verb.count("--l1-weight") == 0,
                    "train --model " << args.model << ": --patch-model and --l1-weight are options of --model gan");
   args.options.model.architecture = learn::architectureFromName(args.model, "--model");
@@ -121,6 +123,10 @@ void registerTrain(CLI::App& app) {
       ->capture_default_str();
   verb->add_option("--width", args->options.model.width, "Multiplier of every channel count, (0, 4]" + ganDefault(gan.width))
       ->capture_default_str();
+  verb->add_option("--min-channels", args->options.model.minChannels,
+                   "Decoders: channels an upsampling layer keeps at the least, whatever the width (the paper's own "
+                   "count where it is smaller); 0: the plain multiplier")
+      ->capture_default_str();
   verb->add_option("--patch-model", args->patchModel,
                    "gan: the trained patch model (all 28 patches) whose stitched predictions of --dataset it blends");
   verb->add_option("--l1-weight", args->gan.l1Weight, "gan: weight of the masked L1 term (metres) against the "
@@ -137,6 +143,11 @@ void registerTrain(CLI::App& app) {
                    "reconstruction, with the marker features as extra inputs");
   verb->add_option("--loss", args->loss, "Image loss on the padded UV mask: l1 or l2")
       ->check(CLI::IsMember({"l1", "l2"}))
+      ->capture_default_str();
+  verb->add_option("--target-scaling", args->targetScaling,
+                   "Decoders: none (learn offsets in metres) or per-channel (learn images of zero mean and unit "
+                   "spread per channel, folded back into metres when saved)")
+      ->check(CLI::IsMember({"none", "per-channel"}))
       ->capture_default_str();
   verb->add_option("--normal-weight", args->options.normalWeight,
                    "Weight of the normal loss; default 0.01 (T-shirt), 0.1 (necktie)");

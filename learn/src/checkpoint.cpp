@@ -35,6 +35,7 @@ nlohmann::json modelSidecar(const ModelSpec& spec, const TrainingData& data, int
           {"output", summarize(spec).output},
           {"values", spec.outputValues},
           {"pca_components", spec.pcaComponents},
+          {"min_channels", spec.minChannels},
           {"garment", data.garment.name},
           {"vertices", data.garment.mesh.numVertices()},
           {"pose_size", data.poseSize},
@@ -43,9 +44,10 @@ nlohmann::json modelSidecar(const ModelSpec& spec, const TrainingData& data, int
           {"loss", loss},
           {"dataset", fs::absolute(data.folder).lexically_normal().string()},
           {"dataset_manifest_crc32", data.manifestCrc},
-          {"residual", data.residual() ? nlohmann::json{{"folder", fs::absolute(data.baseFolder).lexically_normal().string()},
-                                                        {"manifest_crc32", data.baseCrc}}
-                                       : nlohmann::json(nullptr)},
+          {"residual", data.residual()
+                           ? nlohmann::json{{"folder", fs::absolute(data.baseFolder).lexically_normal().string()},
+                                            {"manifest_crc32", data.baseCrc}}
+                           : nlohmann::json(nullptr)},
           {"patch", patch >= 0 ? nlohmann::json(patch) : nlohmann::json(nullptr)}};
 }
 
@@ -63,6 +65,8 @@ ModelSpec specOfSidecar(const nlohmann::json& json, const std::string& context) 
   spec.inputSize = core::requireValue<int>(json, "inputs", context);
   spec.outputValues = core::requireValue<int>(json, "values", context);
   spec.pcaComponents = core::requireValue<int>(json, "pca_components", context);
+  // Models written before the channel floor have no "min_channels": their layers are the plain multiplier's.
+  spec.minChannels = core::valueOr(json, "min_channels", 0, context);
   spec.validate();
   return spec;
 }

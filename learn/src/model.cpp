@@ -36,10 +36,16 @@ struct Layer {
 /// A channel count scaled by the width multiplier, at least 1.
 std::int64_t scaled(double channels, double width) { return std::max<std::int64_t>(1, std::llround(channels * width)); }
 
+/// A decoder layer's channels: `nominal` scaled by the width, but at least `floor` (or `nominal` itself when that
+/// is smaller).
+std::int64_t decoderChannels(double nominal, double width, int floor) {
+  return std::max(scaled(nominal, width), std::min<std::int64_t>(std::llround(nominal), floor));
+}
+
 /// Builds the plan of layers; `shape` tracks one sample's shape.
 class Plan {
  public:
-  explicit Plan(std::int64_t inputs) : shape_{inputs} {}
+  Plan(std::int64_t inputs, int minChannels) : shape_{inputs}, minChannels_(minChannels) {}
   void linear(std::int64_t out) { add({Layer::Kind::Linear, shape_[0], out, 0, 1, 0, {out}}); }
   void unflatten(std::vector<std::int64_t> shape) { add({Layer::Kind::Unflatten, 0, 0, 0, 1, 0, std::move(shape)}); }
   void convTranspose(std::int64_t out, std::int64_t kernel, std::int64_t stride, std::int64_t padding) {
@@ -61,14 +67,14 @@ class Plan {
   void upsampleTo(std::int64_t height, double nominal, double width) {
     while (shape_[1] < height) {
       nominal /= 2;
-      convTranspose(scaled(nominal, width), 4, 2, 1);
+      convTranspose(decoderChannels(nominal, width, minChannels_), 4, 2, 1);
       batchNormRelu();
     }
   }
   /// A linear layer to a rows x columns map of `nominal` channels, BatchNorm, ReLU, the upsampling blocks until the
   /// map is `height` rows high, and a 3x3 convolution to the 3 offset channels.
   void mapDecoder(std::int64_t rows, std::int64_t columns, double nominal, double width, std::int64_t height) {
-    const std::int64_t c = scaled(nominal, width);
+    const std::int64_t c = decoderChannels(nominal, width, minChannels_);
     linear(rows * columns * c);
     unflatten({c, rows, columns});
     batchNormRelu();
@@ -83,17 +89,18 @@ class Plan {
     layers_.push_back(std::move(layer));
   }
   std::vector<std::int64_t> shape_;
+  int minChannels_ = 0;
   std::vector<Layer> layers_;
 };
 
 /// The appendix's networks, DESIGN.md "Networks".
 std::vector<Layer> planOf(const ModelSpec& spec) {
   const double w = spec.width;
-  Plan plan(spec.inputs());
+  Plan plan(spec.inputs(), spec.minChannels);
   switch (spec.architecture) {
     case Architecture::Whole: {  // 90 -> 8x8x384 -> ... -> 256x256x12 -> 6
       plan.unflatten({spec.inputs(), 1, 1});
-      plan.convTranspose(scaled(384, w), 8, 1, 0);
+      plan.convTranspose(decoderChannels(384, w, spec.minChannels), 8, 1, 0);
       plan.batchNormRelu();
       plan.upsampleTo(256, 384, w);
       plan.conv(6, 3);
@@ -225,6 +232,8 @@ Architecture architectureFromName(const std::string& name, const std::string& co
 void ModelSpec::validate() const {
   PIXELCLOTH_CHECK(std::isfinite(width) && width > 0 && width <= 4, "model: width " << width << ", expected (0, 4]");
   PIXELCLOTH_CHECK(inputSize >= 0 && inputSize <= 100000, "model: input size " << inputSize << ", expected >= 0");
+  PIXELCLOTH_CHECK(minChannels >= 0 && minChannels <= 4096,
+                   "model: minimum channels " << minChannels << ", expected 0 to 4096");
   const bool baseline = architecture == Architecture::FullyConnected || architecture == Architecture::FullyConnectedPca;
   PIXELCLOTH_CHECK(!baseline || outputValues > 0,
                    "model: the " << architectureName(architecture) << " baseline needs its output size (values per "
@@ -251,6 +260,7 @@ nlohmann::json ModelSummary::toJson() const {
     layerList.push_back({{"name", l.name}, {"output", l.output}, {"parameters", l.parameters}, {"flops", l.flops}});
   return {{"architecture", architectureName(spec.architecture)},
           {"width", spec.width},
+          {"min_channels", spec.minChannels},
           {"parameters", parameters},
           {"input", input},
           {"output", output},

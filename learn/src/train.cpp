@@ -162,10 +162,63 @@ torch::Tensor positionsOf(OffsetSpace space, const torch::Tensor& values, const 
   return full;
 }
 
+/// A decoder's target images shifted and scaled per channel (TargetScaling::PerChannel); identity when empty.
+struct ChannelScaling {
+  torch::Tensor mean, spread;  ///< C x 1 x 1 each
+
+  bool active() const { return mean.defined(); }
+  /// Target images (B x C x H x W) as the network learns them.
+  torch::Tensor scaled(const torch::Tensor& images) const { return active() ? (images - mean) / spread : images; }
+  /// Network outputs back in metres.
+  torch::Tensor metres(const torch::Tensor& outputs) const { return active() ? outputs * spread + mean : outputs; }
+  void to(const torch::Device& device) {
+    if (active()) {
+      mean = mean.to(device);
+      spread = spread.to(device);
+    }
+  }
+};
+
+/// Mean and spread of each channel of the train split's target images over their masked pixels (spread at least
+/// 0.1 mm, so a channel that hardly varies is not blown up).
+ChannelScaling channelScalingOf(const TrainingData& data, const Target& target) {
+  const std::int64_t channels = target.shape().front();
+  torch::Tensor sum = torch::zeros({channels}, torch::kDouble), squares = torch::zeros({channels}, torch::kDouble),
+                count = torch::zeros({channels}, torch::kDouble);
+  const torch::Tensor mask = target.mask().to(torch::kCPU).to(torch::kDouble);
+  for (int row : data.train) {
+    const torch::Tensor image = target.encode(data.values[row]).to(torch::kDouble);
+    const torch::Tensor weights = mask.expand_as(image);
+    sum += (image * weights).sum({1, 2});
+    squares += (image * image * weights).sum({1, 2});
+    count += weights.sum({1, 2});
+  }
+  count.clamp_min_(1);
+  const torch::Tensor mean = sum / count;
+  const torch::Tensor spread = (squares / count - mean * mean).clamp_min(0).sqrt().clamp_min(1e-4);
+  return {mean.to(torch::kFloat).view({channels, 1, 1}), spread.to(torch::kFloat).view({channels, 1, 1})};
+}
+
+/// Writes the network's weights with `scaling` folded into its last layer (a convolution: out x in x k x k weights,
+/// out biases), so the file predicts metres; the network itself is left as it was.
+void saveScaledWeights(torch::nn::Sequential& net, const ChannelScaling& scaling, const fs::path& path) {
+  if (!scaling.active()) return saveWeights(net, path);
+  torch::NoGradGuard noGrad;
+  std::vector<torch::Tensor> parameters = net->parameters();
+  torch::Tensor &weight = parameters[parameters.size() - 2], &bias = parameters.back();
+  const torch::Tensor weight0 = weight.clone(), bias0 = bias.clone();
+  weight.mul_(scaling.spread.view({-1, 1, 1, 1}));
+  bias.mul_(scaling.spread.view({-1})).add_(scaling.mean.view({-1}));
+  saveWeights(net, path);
+  weight.copy_(weight0);
+  bias.copy_(bias0);
+}
+
 /// Mean per-vertex distance (cm) between the network's values and the targets over `rows`, on the target's vertices
 /// (frames are orthonormal, so in every space it is the position error); NaN for no rows.
-double errorCm(torch::nn::Sequential& net, const Target& target, const TrainingData& data, const std::vector<int>& rows,
-               const torch::Tensor& vertices, const torch::Device& device) {
+double errorCm(torch::nn::Sequential& net, const ChannelScaling& scaling, const Target& target,
+               const TrainingData& data, const std::vector<int>& rows, const torch::Tensor& vertices,
+               const torch::Device& device) {
   if (rows.empty()) return std::numeric_limits<double>::quiet_NaN();
   torch::NoGradGuard noGrad;
   net->eval();
@@ -174,7 +227,7 @@ double errorCm(torch::nn::Sequential& net, const Target& target, const TrainingD
     const std::vector<int> chunk(rows.begin() + first, rows.begin() + std::min(rows.size(), first + 16));
     Eigen::MatrixXf inputs(chunk.size(), data.inputs.cols());
     for (size_t k = 0; k < chunk.size(); ++k) inputs.row(k) = data.inputs.row(chunk[k]);
-    const torch::Tensor predicted = target.decode(net->forward(toTensor(inputs).to(device)));
+    const torch::Tensor predicted = target.decode(scaling.metres(net->forward(toTensor(inputs).to(device))));
     sum += (predicted - gather(data.values, chunk, vertices).to(device)).norm(2, 2).mean(1).sum().item<double>();
   }
   return 100 * sum / rows.size();
@@ -201,6 +254,7 @@ nlohmann::json signatureOf(const nlohmann::json& sidecar, const TrainOptions& op
   signature["seed"] = options.seed;
   signature["normal_weight"] = normalWeight;
   signature["edge_weight"] = edgeWeight;
+  signature["target_scaling"] = targetScalingName(options.targetScaling);
   return signature;
 }
 
@@ -238,10 +292,16 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
     for (size_t k = parameters.size() >= 2 ? parameters.size() - 2 : 0; k < parameters.size(); ++k)
       parameters[k].zero_();
   }
+  const bool decoder = spec.architecture == Architecture::Whole || spec.architecture == Architecture::Patch ||
+                       spec.architecture == Architecture::Necktie;
+  ChannelScaling scaling;
+  if (decoder && options.targetScaling == TargetScaling::PerChannel) scaling = channelScalingOf(data, target);
+  scaling.to(device);
   torch::optim::Adam adam(net->parameters(), torch::optim::AdamOptions(options.learningRate));
   const torch::Tensor mask = target.mask().unsqueeze(0);  // already on the device
 
   nlohmann::json sidecar = modelSidecar(spec, data, job.patch, imageLossName(options.loss));
+  sidecar["target_scaling"] = targetScalingName(scaling.active() ? options.targetScaling : TargetScaling::None);
   const nlohmann::json signature = signatureOf(sidecar, options, normalWeight, edgeWeight);
   NetworkReport report;
   report.patch = job.patch;
@@ -269,10 +329,10 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
     while (std::optional<Batch> batch = prefetch.next(record.dataWaitSeconds)) {
       batch->to(device);
       const torch::Tensor output = net->forward(batch->inputs);
-      torch::Tensor value = maskedImageLoss(output, batch->targets, mask, options.loss);
+      torch::Tensor value = maskedImageLoss(output, scaling.scaled(batch->targets), mask, options.loss);
       record.loss += value.item<double>();
       if (geometry) {
-        const torch::Tensor predicted = positionsOf(data.space, target.decode(output), *batch);
+        const torch::Tensor predicted = positionsOf(data.space, target.decode(scaling.metres(output)), *batch);
         if (normalWeight > 0) {
           const torch::Tensor normal = normalLoss(predicted, batch->truth, target.faces());
           record.normalLoss += normal.item<double>();
@@ -292,8 +352,8 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
     record.loss /= steps;
     record.normalLoss /= steps;
     record.edgeLoss /= steps;
-    record.trainErrorCm = errorCm(net, target, data, data.train, vertices, device);
-    record.regularisationErrorCm = errorCm(net, target, data, data.regularisation, vertices, device);
+    record.trainErrorCm = errorCm(net, scaling, target, data, data.train, vertices, device);
+    record.regularisationErrorCm = errorCm(net, scaling, target, data, data.regularisation, vertices, device);
     record.seconds = secondsSince(start);
     report.epochs.push_back(record);
     // Model selection on the regularisation split (the test split is only for reporting); without one, the last.
@@ -301,7 +361,7 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
     if (report.bestEpoch == 0 || !hasRegularisation || record.regularisationErrorCm < report.bestErrorCm) {
       report.bestEpoch = epoch;
       report.bestErrorCm = hasRegularisation ? record.regularisationErrorCm : record.trainErrorCm;
-      saveWeights(net, job.folder / "model.tensors");
+      saveScaledWeights(net, scaling, job.folder / "model.tensors");
       sidecar["epoch"] = epoch;
       sidecar["train_error_cm"] = record.trainErrorCm;
       sidecar["regularisation_error_cm"] = numberOrNull(record.regularisationErrorCm);
@@ -321,6 +381,13 @@ const core::EnumNames<ImageLoss, 2> kImageLosses{"loss", {{{ImageLoss::L1, "l1"}
 }  // namespace
 
 const char* imageLossName(ImageLoss loss) { return kImageLosses.name(loss); }
+
+const core::EnumNames<TargetScaling, 2> kTargetScalings{
+    "target scaling", {{{TargetScaling::None, "none"}, {TargetScaling::PerChannel, "per-channel"}}}};
+const char* targetScalingName(TargetScaling scaling) { return kTargetScalings.name(scaling); }
+TargetScaling targetScalingFromName(const std::string& name, const std::string& context) {
+  return kTargetScalings.fromName(name, context);
+}
 ImageLoss imageLossFromName(const std::string& name, const std::string& context) {
   return kImageLosses.fromName(name, context);
 }

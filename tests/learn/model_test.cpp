@@ -51,11 +51,17 @@ TEST(Model, SummaryCountsWhatTheBuiltModuleHolds) {
 
 TEST(Model, WidthScalesTheChannelsAndTheCost) {
   const pl::ModelSummary full = pl::summarize(specOf(pl::Architecture::Patch));
-  const pl::ModelSummary quarter = pl::summarize(specOf(pl::Architecture::Patch, 0.25));
+  pl::ModelSpec plainQuarter = specOf(pl::Architecture::Patch, 0.25);
+  plainQuarter.minChannels = 0;
+  const pl::ModelSummary quarter = pl::summarize(plainQuarter);
   EXPECT_EQ(quarter.output, full.output);
   // Convolutions scale with the square of the width, the first linear layer with the width.
   EXPECT_LT(quarter.parameters, full.parameters / 3);
   EXPECT_LT(quarter.gflopForward, full.gflopForward / 10);
+  // The channel floor keeps the last layers' 16 channels: more arithmetic where the image is large.
+  const pl::ModelSummary floored = pl::summarize(specOf(pl::Architecture::Patch, 0.25));
+  EXPECT_GT(floored.gflopForward, quarter.gflopForward);
+  EXPECT_LT(floored.gflopForward, full.gflopForward / 4);
   EXPECT_GT(full.gflopForward, 0.1);
   EXPECT_EQ(quarter.layers.front().name, "linear 90->3200");  // 5 x 5 x 128
 }
@@ -101,6 +107,30 @@ TEST(Model, FcPcaDecodesThroughItsBasis) {
   EXPECT_LT((basis.reconstruct(basis.project(out)) - out).cwiseAbs().maxCoeff(), 1e-4);
   EXPECT_NE(inputErrorOf([&] { model.setPcaBasis(basis.mean, basis.components.topRows(4)); }).find("expected 5 x 30"),
             std::string::npos);
+}
+
+TEST(Model, DecodersKeepAFloorOfChannelsAtSmallWidths) {
+  // Channels of the last upsampling layer (before the 3x3 convolution to the offsets).
+  auto lastChannels = [](pl::Architecture a, double width, int floor) {
+    pl::ModelSpec spec = specOf(a, width);
+    spec.minChannels = floor;
+    const pl::ModelSummary summary = pl::summarize(spec);
+    return summary.layers[summary.layers.size() - 2].output.front();
+  };
+  // Scaled down with the rest, a width-0.125 decoder draws its 6 (3) channels from 2.
+  EXPECT_EQ(lastChannels(pl::Architecture::Whole, 0.125, 0), 2);
+  EXPECT_EQ(lastChannels(pl::Architecture::Patch, 0.125, 0), 2);
+  // With the floor: 16, or the paper's own count where it is smaller (the whole decoder's last 12).
+  EXPECT_EQ(lastChannels(pl::Architecture::Whole, 0.125, 16), 12);
+  EXPECT_EQ(lastChannels(pl::Architecture::Patch, 0.125, 16), 16);
+  EXPECT_EQ(lastChannels(pl::Architecture::Necktie, 0.25, 16), 8);
+  // At the paper's width the floor changes nothing.
+  pl::ModelSpec plain = specOf(pl::Architecture::Patch);
+  plain.minChannels = 0;
+  EXPECT_EQ(pl::summarize(plain).parameters, pl::summarize(specOf(pl::Architecture::Patch)).parameters);
+  pl::ModelSpec bad = specOf(pl::Architecture::Whole);
+  bad.minChannels = -1;
+  EXPECT_NE(inputErrorOf([&] { pl::summarize(bad); }).find("minimum channels -1"), std::string::npos);
 }
 
 TEST(Model, BadSpecsAndInputsAreRefused) {

@@ -120,6 +120,23 @@ TEST(Train, TheCheckpointReloadsToItsRecordedError) {
   EXPECT_NEAR(recorded, report.epochs[report.bestEpoch - 1].trainErrorCm, 1e-9);
 }
 
+TEST(Train, PerChannelScalingIsFoldedIntoTheSavedWeights) {
+  // Trained on scaled images, the saved model still predicts metres: it reloads to the error training measured.
+  pl::TrainOptions options = necktieOptions(5);
+  options.targetScaling = pl::TargetScaling::PerChannel;
+  const fs::path out = pixelcloth::testing::freshDir("model");
+  const pl::NetworkReport report = pl::train(necktieDataset(), out, options).networks.front();
+  EXPECT_EQ(pc::readJson(out / "model.json")["target_scaling"], "per-channel");
+  const pl::TrainingData data = pl::loadTrainingData(necktieDataset(), pl::OffsetSpace::Root, {});
+  const pl::TrainedModel model(out, data.garment);
+  const double recorded = report.epochs[report.bestEpoch - 1].trainErrorCm;
+  EXPECT_NEAR(errorOf(model, data, data.train), recorded, 1e-3 * recorded);
+  // A different model from the unscaled run's, so the scaling did something.
+  const fs::path plain = pixelcloth::testing::freshDir("plain");
+  pl::train(necktieDataset(), plain, necktieOptions(5));
+  EXPECT_GT(std::abs(errorOf(pl::TrainedModel(plain, data.garment), data, data.train) - recorded), 1e-3);
+}
+
 TEST(Train, AResumedRunEndsWithTheWeightsOfAnUninterruptedOne) {
   const fs::path whole = pixelcloth::testing::freshDir("whole"), split = pixelcloth::testing::freshDir("split");
   pl::train(necktieDataset(), whole, necktieOptions(4));

@@ -27,6 +27,10 @@ struct ModelSpec {
   /// Multiplies every channel count of the decoders and the hidden units of the baselines (0.25 for small CPU runs);
   /// counts are rounded and kept at least 1. In (0, 4].
   double width = 1.0;
+  /// The decoders' upsampling layers keep at least this many channels (or the paper's own count where it is smaller)
+  /// whatever the width: scaled down with the rest, the last layers of a width-0.125 decoder had 2 channels to draw 6
+  /// (docs/learning.md, "Why the decoders underfit"). 0: no floor, the plain multiplier. At width 1 it changes nothing.
+  int minChannels = 16;
   /// Floats in: the pose (body::kPoseSize, body::kNecktiePoseSize for the necktie) plus any marker features. 0: the
   /// pose alone.
   int inputSize = 0;

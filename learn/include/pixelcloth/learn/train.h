@@ -23,6 +23,20 @@ const char* imageLossName(ImageLoss loss);  ///< "l1", "l2"
 /// The loss named `name`; InputError naming `context` otherwise.
 ImageLoss imageLossFromName(const std::string& name, const std::string& context);
 
+/// How the decoders' target images are scaled while they learn. The saved weights predict metres either way: the
+/// scaling is folded into the last layer when they are written.
+enum class TargetScaling {
+  /// Offsets in metres, as the dataset holds them.
+  None,
+  /// Each channel shifted and scaled to zero mean and unit spread over the train split's masked pixels. It did not
+  /// help (docs/learning.md, "Why the decoders underfit"): the L1 loss then weighs the small tangential offsets as
+  /// much as the normal ones, which the position error does not.
+  PerChannel
+};
+const char* targetScalingName(TargetScaling scaling);  ///< "none", "per-channel"
+/// The scaling named `name`; InputError naming `context` otherwise.
+TargetScaling targetScalingFromName(const std::string& name, const std::string& context);
+
 /// Settings of train().
 struct TrainOptions {
   /// The architecture and width; train() fills the input size (pose, plus marker features in residual mode) and, for
@@ -32,6 +46,8 @@ struct TrainOptions {
   /// with different subsets (a job array) fill one model folder.
   std::vector<int> patches;
   ImageLoss loss = ImageLoss::L1;
+  /// The decoders' (whole, patch, necktie) target scaling; the baselines learn metres.
+  TargetScaling targetScaling = TargetScaling::None;
   /// What the values mean; the default (unset) is the garment's (garment::GarmentTraits::rootFrameOffsets): the
   /// paper's root frame for the necktie, local frames otherwise.
   std::optional<OffsetSpace> space;

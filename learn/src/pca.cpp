@@ -9,6 +9,7 @@
 
 #include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/learn/cpu.h"
 #include "pixelcloth/learn/model.h"
 #include "tensor.h"
 
@@ -18,22 +19,6 @@ namespace {
 
 const core::EnumNames<PcaMethod, 3> kMethods{
     "PCA method", {{{PcaMethod::Svd, "svd"}, {PcaMethod::Gram, "gram"}, {PcaMethod::Randomized, "randomized"}}}};
-
-/// LibTorch's intra-op threads (and so OpenBLAS's) at one per core for the length of a fit, and back after: LibTorch
-/// starts with one on these machines. OMP_NUM_THREADS, when set, has the last word.
-class AllCores {
- public:
-  AllCores() : saved_(at::get_num_threads()) {
-    if (std::getenv("OMP_NUM_THREADS") == nullptr)
-      at::set_num_threads(std::max(1, static_cast<int>(std::thread::hardware_concurrency())));
-  }
-  ~AllCores() { at::set_num_threads(saved_); }
-  AllCores(const AllCores&) = delete;
-  AllCores& operator=(const AllCores&) = delete;
-
- private:
-  int saved_;
-};
 
 /// Orthonormal columns spanning those of `a` (reduced QR).
 torch::Tensor orthonormalColumns(const torch::Tensor& a) { return std::get<0>(torch::linalg::qr(a, "reduced")); }
@@ -86,7 +71,7 @@ PcaBasis fitPca(const Eigen::MatrixXf& data, int components, PcaMethod method, s
                                                                             << " x " << m << " data, expected 1 to "
                                                                             << std::min(n, m));
   torch::NoGradGuard noGrad;
-  const AllCores cores;
+  const ThreadScope cores(0);
   const std::int64_t k = components;
   const double dof = static_cast<double>(std::max<std::int64_t>(n - 1, 1));
   torch::Tensor x = toTensor(data);

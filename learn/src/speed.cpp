@@ -9,6 +9,7 @@
 #include "model_impl.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/measure.h"
+#include "pixelcloth/learn/cpu.h"
 
 namespace pixelcloth::learn {
 
@@ -17,20 +18,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 using core::secondsSince;
-
-/// Sets LibTorch's threads for a scope and puts them back.
-class ThreadScope {
- public:
-  explicit ThreadScope(int threads) : before_(torch::get_num_threads()) {
-    if (threads > 0) torch::set_num_threads(threads);
-  }
-  ~ThreadScope() { torch::set_num_threads(before_); }
-  ThreadScope(const ThreadScope&) = delete;
-  ThreadScope& operator=(const ThreadScope&) = delete;
-
- private:
-  int before_;
-};
 
 }  // namespace
 
@@ -52,6 +39,7 @@ double sgemmGflops(int n, int threads, int repeats) {
 double trainStepSeconds(const ModelSpec& spec, int batch, int steps, int threads) {
   PIXELCLOTH_CHECK(batch >= 1 && steps >= 1, "train step: batch " << batch << ", " << steps << " steps");
   const ThreadScope scope(threads);
+  keepFreedMemory();  // as train() does
   Model model(spec, 1);
   torch::nn::Sequential& net = ModelAccess::network(model);
   net->train();

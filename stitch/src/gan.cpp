@@ -16,6 +16,7 @@
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/progress.h"
+#include "pixelcloth/learn/cpu.h"
 #include "pixelcloth/learn/weights_file.h"
 #include "pixelcloth/stitch/evaluate.h"
 
@@ -138,7 +139,8 @@ GanReport trainGan(const learn::TrainedModel& patchModel, const learn::TrainingD
   patchModel.checkDataset(data.info);
   PIXELCLOTH_CHECK(!data.train.empty(), "gan: " << data.folder.string() << " has no training samples");
   const ClothTensors images(data.garment, "gan: " + data.folder.string());
-  if (options.threads > 0) torch::set_num_threads(options.threads);
+  const learn::ThreadScope cores(options.threads);
+  learn::keepFreedMemory();
 
   // The inputs: the patch model's stitched predictions, made once; the targets: ground truth (base added back).
   const RowPredictions trainInputs = predictRows(patchModel, data, data.train);

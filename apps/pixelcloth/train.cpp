@@ -19,7 +19,7 @@ namespace pixelcloth::apps {
 namespace {
 struct TrainArgs {
   std::string dataset, out, model = "whole", patches = "all", space, residual, patchModel, loss = "l1",
-                            targetScaling = "none";
+                            targetScaling = "none", schedule = "constant";
   bool quiet = false;
   learn::TrainOptions options;
   stitch::GanOptions gan;
@@ -53,8 +53,9 @@ void runTrainGan(TrainArgs args, const CLI::App& verb) {
   PIXELCLOTH_CHECK(!args.patchModel.empty(),
                    "train --model gan: give the patch model to blend with --patch-model DIR (pixelcloth train --model "
                    "patch --out DIR)");
-  for (const char* option : {"--patches", "--components", "--space", "--residual", "--loss", "--target-scaling",
-                             "--min-channels", "--normal-weight", "--edge-weight", "--networks-at-once"})
+  for (const char* option :
+       {"--patches", "--components", "--space", "--residual", "--loss", "--target-scaling", "--min-channels",
+        "--normal-weight", "--edge-weight", "--networks-at-once", "--schedule", "--patience"})
     PIXELCLOTH_CHECK(verb.count(option) == 0, "train --model gan: " << option << " is not an option of the blender "
                                                                     << "(it takes the space and base of --patch-model)");
   stitch::GanOptions& gan = args.gan;
@@ -81,6 +82,7 @@ void runTrain(TrainArgs args, const CLI::App& verb) {
   if (args.model == "gan") return runTrainGan(std::move(args), verb);
   args.options.loss = learn::imageLossFromName(args.loss, "train --loss");
   args.options.targetScaling = learn::targetScalingFromName(args.targetScaling, "train --target-scaling");
+  args.options.schedule = learn::scheduleFromName(args.schedule, "train --schedule");
   PIXELCLOTH_CHECK(args.patchModel.empty() && verb.count("--l1-weight") == 0,
                    "train --model " << args.model << ": --patch-model and --l1-weight are options of --model gan");
   args.options.model.architecture = learn::architectureFromName(args.model, "--model");
@@ -93,7 +95,8 @@ void runTrain(TrainArgs args, const CLI::App& verb) {
     const learn::EpochRecord& best = n.epochs[n.bestEpoch - 1];
     std::cout << (n.patch >= 0 ? "patch " + std::to_string(n.patch) + ": " : std::string()) << "epoch " << best.epoch
               << " of " << n.epochs.size() << ": train " << best.trainErrorCm << " cm, regularisation "
-              << best.regularisationErrorCm << " cm -> " << n.folder.string() << "\n";
+              << best.regularisationErrorCm << " cm" << (n.stoppedEarly ? " (stopped early)" : "") << " -> "
+              << n.folder.string() << "\n";
   }
   std::cout << report.networks.size() << " network(s) in " << std::setprecision(1) << report.seconds << " s\n";
 }
@@ -156,6 +159,15 @@ void registerTrain(CLI::App& app) {
   verb->add_option("--epochs", args->options.epochs, "Passes over the train split" + ganDefault(gan.epochs))->capture_default_str();
   verb->add_option("--batch", args->options.batch, "Samples per Adam step" + ganDefault(gan.batch))->capture_default_str();
   verb->add_option("--lr", args->options.learningRate, "Adam's learning rate" + ganDefault(gan.learningRate))
+      ->capture_default_str();
+  verb->add_option("--schedule", args->schedule,
+                   "Decoders and baselines: the learning rate over the run: constant, cosine (to zero at the last "
+                   "step) or step (a tenth from half the epochs, a hundredth from three quarters)")
+      ->check(CLI::IsMember({"constant", "cosine", "step"}))
+      ->capture_default_str();
+  verb->add_option("--patience", args->options.patience,
+                   "Decoders and baselines: stop after this many epochs without a lower regularisation error (0: "
+                   "run every epoch)")
       ->capture_default_str();
   verb->add_option("--seed", args->options.seed, "Seeds the weights and the order of the samples")
       ->capture_default_str();

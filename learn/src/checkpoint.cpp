@@ -2,13 +2,15 @@
 
 #include <cmath>
 #include <cstdio>
+#include <set>
+#include <sstream>
 
 #include "model_impl.h"
-#include "pixelcloth/learn/weights_file.h"
-#include "tensor.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
+#include "pixelcloth/learn/weights_file.h"
+#include "tensor.h"
 
 namespace pixelcloth::learn {
 
@@ -123,16 +125,21 @@ void loadCheckpoint(const fs::path& path, const nlohmann::json& signature, torch
   }
   const nlohmann::json previous = file.meta.contains("signature") ? file.meta["signature"] : nlohmann::json();
   if (previous != signature) {
-    std::string key = "?";
-    for (const auto& [k, v] : signature.items())
-      if (!previous.is_object() || !previous.contains(k) || previous[k] != v) {
-        key = k;
-        break;
-      }
-    PIXELCLOTH_FAIL(name << ": holds a run with other settings (" << key << ": "
-                         << (previous.is_object() && previous.contains(key) ? previous[key].dump() : "none")
-                         << " there, " << (signature.contains(key) ? signature[key].dump() : "none")
-                         << " now); use another --out, or delete the folder to start afresh");
+    // Every setting that differs, in either direction.
+    std::set<std::string> keys;
+    for (const nlohmann::json* side : {&previous, &signature})
+      if (side->is_object())
+        for (const auto& item : side->items()) keys.insert(item.key());
+    auto valueIn = [](const nlohmann::json& side, const std::string& key) {
+      return side.is_object() && side.contains(key) ? side[key].dump() : std::string("none");
+    };
+    std::ostringstream differences;
+    for (const std::string& key : keys)
+      if (valueIn(previous, key) != valueIn(signature, key))
+        differences << (differences.tellp() > 0 ? "; " : "") << key << ": " << valueIn(previous, key) << " there, "
+                    << valueIn(signature, key) << " now";
+    PIXELCLOTH_FAIL(name << ": holds a run with other settings (" << differences.str()
+                         << "); use another --out, or delete the folder to start afresh");
   }
   const std::string what = "this run's network";
   loadModuleArrays(*net, file, path, what, "model/");

@@ -28,6 +28,7 @@
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/garment.h"
+#include "pixelcloth/learn/cpu.h"
 #include "pixelcloth/learn/training_data.h"
 #include "pixelcloth/patches/patch.h"
 #include "target.h"
@@ -255,6 +256,8 @@ nlohmann::json signatureOf(const nlohmann::json& sidecar, const TrainOptions& op
   signature["normal_weight"] = normalWeight;
   signature["edge_weight"] = edgeWeight;
   signature["target_scaling"] = targetScalingName(options.targetScaling);
+  signature["schedule"] = scheduleName(options.schedule);
+  if (options.schedule != Schedule::Constant) signature["epochs"] = options.epochs;  // the rates depend on the length
   return signature;
 }
 
@@ -319,7 +322,18 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
   };
   for (int e = 0; e < report.resumedAt; ++e) shuffled();  // the same orders as an uninterrupted run
 
+  const bool hasRegularisation = !data.regularisation.empty();
+  const std::int64_t stepsPerEpoch = (static_cast<std::int64_t>(data.train.size()) + options.batch - 1) / options.batch;
+  auto setRate = [&](std::int64_t step) {
+    const double rate = scheduledRate(options.schedule, options.learningRate, step, stepsPerEpoch * options.epochs);
+    for (torch::optim::OptimizerParamGroup& group : adam.param_groups())
+      static_cast<torch::optim::AdamOptions&>(group.options()).lr(rate);
+  };
   for (int epoch = report.resumedAt + 1; epoch <= options.epochs; ++epoch) {
+    if (options.patience > 0 && hasRegularisation && epoch - 1 - report.bestEpoch >= options.patience) {
+      report.stoppedEarly = true;  // checked first, so a resumed run that had stopped stops again
+      break;
+    }
     const auto start = Clock::now();
     EpochRecord record;
     record.epoch = epoch;
@@ -344,6 +358,7 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
           value = value + edgeWeight * edge;
         }
       }
+      setRate((epoch - 1) * stepsPerEpoch + steps);
       adam.zero_grad();
       value.backward();
       adam.step();
@@ -357,7 +372,6 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
     record.seconds = secondsSince(start);
     report.epochs.push_back(record);
     // Model selection on the regularisation split (the test split is only for reporting); without one, the last.
-    const bool hasRegularisation = !data.regularisation.empty();
     if (report.bestEpoch == 0 || !hasRegularisation || record.regularisationErrorCm < report.bestErrorCm) {
       report.bestEpoch = epoch;
       report.bestErrorCm = hasRegularisation ? record.regularisationErrorCm : record.trainErrorCm;
@@ -382,6 +396,26 @@ const core::EnumNames<ImageLoss, 2> kImageLosses{"loss", {{{ImageLoss::L1, "l1"}
 
 const char* imageLossName(ImageLoss loss) { return kImageLosses.name(loss); }
 
+const core::EnumNames<Schedule, 3> kSchedules{
+    "schedule", {{{Schedule::Constant, "constant"}, {Schedule::Cosine, "cosine"}, {Schedule::Step, "step"}}}};
+const char* scheduleName(Schedule schedule) { return kSchedules.name(schedule); }
+Schedule scheduleFromName(const std::string& name, const std::string& context) {
+  return kSchedules.fromName(name, context);
+}
+
+double scheduledRate(Schedule schedule, double rate, std::int64_t step, std::int64_t steps) {
+  const double progress = steps > 0 ? static_cast<double>(step) / static_cast<double>(steps) : 0.0;
+  switch (schedule) {
+    case Schedule::Constant:
+      return rate;
+    case Schedule::Cosine:
+      return 0.5 * rate * (1 + std::cos(M_PI * std::min(1.0, progress)));
+    case Schedule::Step:
+      return progress < 0.5 ? rate : progress < 0.75 ? 0.1 * rate : 0.01 * rate;
+  }
+  return rate;
+}
+
 const core::EnumNames<TargetScaling, 2> kTargetScalings{
     "target scaling", {{{TargetScaling::None, "none"}, {TargetScaling::PerChannel, "per-channel"}}}};
 const char* targetScalingName(TargetScaling scaling) { return kTargetScalings.name(scaling); }
@@ -402,6 +436,7 @@ void TrainOptions::validate() const {
                    "train: learning rate " << learningRate << ", expected > 0");
   PIXELCLOTH_CHECK(std::isfinite(normalWeight) && std::isfinite(edgeWeight),
                    "train: the normal and edge weights must be finite");
+  PIXELCLOTH_CHECK(patience >= 0, "train: patience " << patience << ", expected 0 (off) or more epochs");
   PIXELCLOTH_CHECK(threads >= 0 && threads <= 1024, "train: " << threads << " threads, expected 0 to 1024");
   PIXELCLOTH_CHECK(networksAtOnce >= 0 && networksAtOnce <= 1024,
                    "train: " << networksAtOnce << " networks at once, expected 0 to 1024");
@@ -416,7 +451,8 @@ TrainReport train(const data::DatasetFolder& dataset, const fs::path& out, const
   const fs::path& datasetFolder = dataset.path;
   options.validate();
   const auto start = Clock::now();
-  if (options.threads > 0) torch::set_num_threads(options.threads);
+  const ThreadScope cores(options.threads);
+  keepFreedMemory();
   const data::DatasetInfo info = data::readDatasetInfo(dataset);
   const garment::Garment garment = data::datasetGarment(info);
   const garment::GarmentTraits& traits = garment.traits;
@@ -480,6 +516,7 @@ TrainReport train(const data::DatasetFolder& dataset, const fs::path& out, const
   auto trainJob = [&](size_t k) {
     NetworkReport network = trainNetwork(data, jobs[k], spec, options, normalWeight, edgeWeight, progress.get());
     if (progress && network.resumedAt > 0) progress->advance(std::min(network.resumedAt, options.epochs));
+    if (progress && network.stoppedEarly) progress->advance(options.epochs - static_cast<int>(network.epochs.size()));
     return network;
   };
   const int threads = torch::get_num_threads();

@@ -160,6 +160,62 @@ TEST(Train, AResumedRunEndsWithTheWeightsOfAnUninterruptedOne) {
   EXPECT_NE(message.find("checkpoint.tensors"), std::string::npos) << message;
 }
 
+TEST(Train, TheSchedulesDecayTheRateOverTheRun) {
+  EXPECT_EQ(pl::scheduledRate(pl::Schedule::Constant, 1e-3, 99, 100), 1e-3);
+  EXPECT_DOUBLE_EQ(pl::scheduledRate(pl::Schedule::Cosine, 1e-3, 0, 100), 1e-3);
+  EXPECT_DOUBLE_EQ(pl::scheduledRate(pl::Schedule::Cosine, 1e-3, 50, 100), 0.5e-3);
+  EXPECT_LT(pl::scheduledRate(pl::Schedule::Cosine, 1e-3, 99, 100), 1e-6);
+  EXPECT_EQ(pl::scheduledRate(pl::Schedule::Step, 1e-3, 49, 100), 1e-3);
+  EXPECT_DOUBLE_EQ(pl::scheduledRate(pl::Schedule::Step, 1e-3, 50, 100), 1e-4);
+  EXPECT_DOUBLE_EQ(pl::scheduledRate(pl::Schedule::Step, 1e-3, 75, 100), 1e-5);
+  EXPECT_EQ(pl::scheduleFromName("cosine", "test"), pl::Schedule::Cosine);
+  EXPECT_NE(inputErrorOf([] { pl::scheduleFromName("linear", "train --schedule"); }).find("train --schedule"),
+            std::string::npos);
+
+  // A cosine run takes other steps than a constant one, and its length is one of its settings: a finished run is not
+  // extended, and the schedule of a folder's run is not changed.
+  pl::TrainOptions cosine = necktieOptions(3);
+  cosine.schedule = pl::Schedule::Cosine;
+  const fs::path decayed = pixelcloth::testing::freshDir("cosine"),
+                 constant = pixelcloth::testing::freshDir("constant");
+  pl::train(necktieDataset(), decayed, cosine);
+  pl::train(necktieDataset(), constant, necktieOptions(3));
+  const pl::TrainingData data = pl::loadTrainingData(necktieDataset(), pl::OffsetSpace::Root, {});
+  const Eigen::MatrixXf inputs = data.inputs.topRows(2);
+  EXPECT_NE(pl::TrainedModel(decayed, data.garment).predict(inputs).front().values,
+            pl::TrainedModel(constant, data.garment).predict(inputs).front().values);
+  pl::TrainOptions longer = cosine;
+  longer.epochs = 5;
+  const std::string extended = inputErrorOf([&] { pl::train(necktieDataset(), decayed, longer); });
+  EXPECT_NE(extended.find("epochs"), std::string::npos) << extended;
+  pl::TrainOptions stepped = necktieOptions(3);
+  stepped.schedule = pl::Schedule::Step;
+  const std::string changed = inputErrorOf([&] { pl::train(necktieDataset(), constant, stepped); });
+  EXPECT_NE(changed.find("schedule"), std::string::npos) << changed;
+}
+
+TEST(Train, PatienceStopsARunThatNoLongerImproves) {
+  // A learning rate far below the weights' float precision: the regularisation error stays where the first epoch left
+  // it, so the run stops `patience` epochs after its best one, and a rerun of the folder stops where it stopped.
+  pl::TrainOptions options = necktieOptions(12);
+  options.model.architecture = pl::Architecture::FullyConnectedPca;
+  options.model.pcaComponents = 8;
+  options.learningRate = 1e-15;
+  options.patience = 3;
+  const fs::path out = pixelcloth::testing::freshDir("patience");
+  const pl::NetworkReport stopped = pl::train(necktieDataset(), out, options).networks.front();
+  EXPECT_TRUE(stopped.stoppedEarly);
+  EXPECT_LT(stopped.epochs.size(), 12u);
+  EXPECT_EQ(static_cast<int>(stopped.epochs.size()), stopped.bestEpoch + options.patience);
+  EXPECT_EQ(pc::readJson(out / "model.json")["epoch"].get<int>(), stopped.bestEpoch);
+  const pl::NetworkReport again = pl::train(necktieDataset(), out, options).networks.front();
+  EXPECT_TRUE(again.stoppedEarly);
+  EXPECT_EQ(again.epochs.size(), stopped.epochs.size());
+  EXPECT_EQ(again.resumedAt, static_cast<int>(stopped.epochs.size()));
+  options.patience = -1;
+  EXPECT_NE(inputErrorOf([&] { options.validate(); }).find("patience"), std::string::npos);
+}
+
 namespace {
 /// Tiny patch decoders of `patches`, batch 2, quiet.
 pl::TrainOptions patchOptions(std::vector<int> patches, int epochs) {

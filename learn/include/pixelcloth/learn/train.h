@@ -37,6 +37,15 @@ const char* targetScalingName(TargetScaling scaling);  ///< "none", "per-channel
 /// The scaling named `name`; InputError naming `context` otherwise.
 TargetScaling targetScalingFromName(const std::string& name, const std::string& context);
 
+/// The learning rate over a run, from the rate given at the first step: constant; a cosine from it to zero over all
+/// the run's steps; or a tenth of it from half the epochs and a hundredth from three quarters (step decay).
+enum class Schedule { Constant, Cosine, Step };
+const char* scheduleName(Schedule schedule);  ///< "constant", "cosine", "step"
+/// The schedule named `name`; InputError naming `context` otherwise.
+Schedule scheduleFromName(const std::string& name, const std::string& context);
+/// The learning rate of step `step` (from 0) of `steps` in a run that starts at `rate`.
+double scheduledRate(Schedule schedule, double rate, std::int64_t step, std::int64_t steps);
+
 /// Settings of train().
 struct TrainOptions {
   /// The architecture and width; train() fills the input size (pose, plus marker features in residual mode) and, for
@@ -62,8 +71,14 @@ struct TrainOptions {
   int epochs = 20;          ///< passes over the train split, [1, 100000]
   int batch = 8;            ///< samples per Adam step, [1, 4096]
   double learningRate = 1e-3;
+  /// The learning rate over the run. Under a decaying schedule the epochs are part of a run's settings: a finished
+  /// run is not extended by more.
+  Schedule schedule = Schedule::Constant;
+  /// Early stopping: a network stops after this many epochs without a lower regularisation error (0: never; needs a
+  /// regularisation split). Its model is the best epoch's either way.
+  int patience = 0;
   std::uint64_t seed = 0;   ///< initial weights and the order of the train split in each epoch
-  int threads = 0;          ///< LibTorch's intra-op threads; 0: its default (one per core)
+  int threads = 0;          ///< LibTorch's intra-op threads; 0: one per core (OMP_NUM_THREADS, when set, decides)
   /// Patch decoders: how many networks train at once, each on one thread (the threads above shared out); 0: one
   /// per thread when there are two or more networks. 1: one after another, each on all the threads.
   int networksAtOnce = 0;
@@ -90,6 +105,7 @@ struct NetworkReport {
   int bestEpoch = 0;  ///< the epoch whose weights model.tensors holds: lowest regularisation error (else the last)
   double bestErrorCm = std::numeric_limits<double>::quiet_NaN();
   int resumedAt = 0;  ///< epochs found done in the folder's checkpoint (0: a fresh start)
+  bool stoppedEarly = false;  ///< ended by TrainOptions::patience before the last epoch
 };
 
 struct TrainReport {

@@ -9,8 +9,10 @@
 
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/image.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/stitch/gan.h"
+#include "pixelcloth/viz/pictures.h"
 #include "prediction_inputs.h"
 #include "verbs.h"
 
@@ -92,6 +94,10 @@ void runTrain(TrainArgs args, const CLI::App& verb) {
   const learn::TrainReport report = learn::train(datasetFolder(args.dataset), args.out, args.options);
   std::cout << std::fixed << std::setprecision(3);
   for (const learn::NetworkReport& n : report.networks) {
+    std::ostringstream title;
+    title << args.model << " width " << args.options.model.width
+          << (n.patch >= 0 ? ", patch " + std::to_string(n.patch) : std::string());
+    core::writePng(n.folder / "training.png", viz::renderTrainingCurves(n, title.str()));
     const learn::EpochRecord& best = n.epochs[n.bestEpoch - 1];
     std::cout << (n.patch >= 0 ? "patch " + std::to_string(n.patch) + ": " : std::string()) << "epoch " << best.epoch
               << " of " << n.epochs.size() << ": train " << best.trainErrorCm << " cm, regularisation "
@@ -177,8 +183,8 @@ void registerTrain(CLI::App& app) {
                    "after another on all threads)")
       ->capture_default_str();
   verb->add_option("--out", args->out,
-                   "Model folder: model.tensors (best epoch), model.json, log.csv, checkpoint.tensors (patch_NN/ per patch; gan: "
-                   "no checkpoint)")
+                   "Model folder: model.tensors (best epoch), model.json, log.csv, training.png (the curves), "
+                   "checkpoint.tensors (patch_NN/ per patch; gan: no checkpoint)")
       ->required();
   verb->add_flag("--quiet", args->quiet, "No progress on stderr");
   verb->callback([args, verb] { runTrain(*args, *verb); });

@@ -134,7 +134,8 @@ TEST_F(CliBodyTest, GenerateMakesACheckedNecktieDatasetAndResumes) {
   const CliRun train = runPixelcloth({"train", "--dataset", data.string(), "--model", "necktie", "--width", "0.125",
                                       "--epochs", "2", "--batch", "2", "--out", model.string(), "--quiet"});
   ASSERT_EQ(train.status, 0) << train;
-  for (const char* name : {"model.tensors", "model.json", "log.csv"}) EXPECT_TRUE(fs::exists(model / name)) << name;
+  for (const char* name : {"model.tensors", "model.json", "log.csv", "training.png"})
+    EXPECT_TRUE(fs::exists(model / name)) << name;
   EXPECT_EQ(nlohmann::json::parse(readFile(model / "model.json"))["architecture"], "necktie");
   EXPECT_TRUE(refused(runPixelcloth({"train", "--dataset", data.string(), "--model", "whole", "--epochs", "1", "--out",
                                      (out / "whole").string()}),

@@ -133,12 +133,55 @@ TEST(TrainingCurves, BothSplitsAreDrawn) {
     r.epoch = e;
     r.trainErrorCm = 4.0 / e;
     r.regularisationErrorCm = 5.0 / e + 0.2;
+    r.seconds = 10;
     report.epochs.push_back(r);
   }
   report.bestEpoch = 6;
   const pc::RgbImage image = pv::renderTrainingCurves(report, "whole");
   auto bluish = [](const pc::Color& c) { return c[2] > c[0] + 80 && c[2] > 120; };
   auto orange = [](const pc::Color& c) { return c[0] > 200 && c[1] > 80 && c[1] < 180 && c[2] < 80; };
-  EXPECT_GT(pixelsWhere(image, bluish).first, 50);
-  EXPECT_GT(pixelsWhere(image, orange).first, 50);
+  // Both splits in both panels: against the epoch (left half) and against wall time (right half).
+  auto inHalf = [&](bool right, const std::function<bool(const pc::Color&)>& colour) {
+    int count = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = right ? image.width / 2 : 0; x < (right ? image.width : image.width / 2); ++x) {
+        const std::uint8_t* p = image.at(x, y);
+        count += colour({p[0], p[1], p[2]}) ? 1 : 0;
+      }
+    return count;
+  };
+  for (bool right : {false, true}) {
+    EXPECT_GT(inHalf(right, bluish), 50) << (right ? "wall time" : "epoch");
+    EXPECT_GT(inHalf(right, orange), 50) << (right ? "wall time" : "epoch");
+  }
+}
+
+TEST(TrainingCurves, TheWallTimePanelSpacesEpochsByTheirSeconds) {
+  // Five epochs of 1 s at 4 cm, then one of 100 s ending at 1 cm. Against the epoch the drop is the last fifth of the
+  // panel, so the curve is still at 4 cm half way across; against wall time the drop takes nearly the whole panel, so
+  // half way across the curve is already well below.
+  pixelcloth::learn::NetworkReport report;
+  for (int e = 1; e <= 6; ++e) {
+    pixelcloth::learn::EpochRecord r;
+    r.epoch = e;
+    r.trainErrorCm = e == 6 ? 1.0 : 4.0;
+    r.regularisationErrorCm = std::nan("");
+    r.seconds = e == 6 ? 100 : 1;
+    report.epochs.push_back(r);
+  }
+  report.bestEpoch = 6;
+  const pc::RgbImage image = pv::renderTrainingCurves(report, "a slow last epoch");
+  auto blueRow = [&](int x) {  // mean row of the blue curve's pixels in column x (-1: none)
+    double rows = 0;
+    int count = 0;
+    for (int y = 0; y < image.height; ++y) {
+      const std::uint8_t* p = image.at(x, y);
+      if (p[2] > p[0] + 80 && p[2] > 120) rows += y, ++count;
+    }
+    return count > 0 ? rows / count : -1.0;
+  };
+  const double epochMiddle = blueRow(image.width / 4), wallMiddle = blueRow(3 * image.width / 4);
+  ASSERT_GT(epochMiddle, 0);
+  ASSERT_GT(wallMiddle, 0);
+  EXPECT_GT(wallMiddle, epochMiddle + 40) << "rows grow downwards: lower errors sit lower";
 }

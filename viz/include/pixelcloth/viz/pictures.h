@@ -74,8 +74,9 @@ void writeDressingFolder(const body::Body& body, const garment::Garment& garment
                          const std::filesystem::path& out);
 
 /// Training curves of a learn::NetworkReport: per-vertex error (cm, log scale) on the train split (blue) and the
-/// regularisation split (orange) against the epoch, the best epoch marked, under a title naming `model`.
-core::RgbImage renderTrainingCurves(const learn::NetworkReport& report, const std::string& model, int width = 640,
+/// regularisation split (orange), against the epoch (left) and against the wall time of the epochs (right), the best
+/// epoch marked in both, under a title naming `model`. At least 400 x 150.
+core::RgbImage renderTrainingCurves(const learn::NetworkReport& report, const std::string& model, int width = 960,
                                     int height = 360);
 
 }  // namespace pixelcloth::viz

@@ -91,8 +91,12 @@ struct EpochRecord {
   double loss = 0;                   ///< mean training loss of its steps (image term, metres for L1)
   double normalLoss = 0;             ///< mean normal term (before its weight); 0 when off
   double edgeLoss = 0;               ///< mean edge-length term, metres; 0 when off
-  double trainErrorCm = 0;           ///< mean per-vertex error on the train split after the epoch, cm
-  double regularisationErrorCm = 0;  ///< the same on the regularisation split (NaN when it is empty)
+  /// Mean per-vertex error on the train split over the epoch's steps, from their own forward passes (training mode,
+  /// the weights moving), cm.
+  double trainErrorCm = 0;
+  /// Mean per-vertex error on the regularisation split after the epoch, on the weights it ended with (NaN when the
+  /// split is empty), cm.
+  double regularisationErrorCm = 0;
   double seconds = 0;
   double dataWaitSeconds = 0;        ///< of those, waiting for the prefetch thread's next batch
 };

@@ -9,24 +9,28 @@
 namespace pixelcloth::apps {
 
 void registerBench(CLI::App& app) {
-  auto repeats = std::make_shared<int>(5);
+  auto options = std::make_shared<bench::SuiteOptions>();
   CLI::App* verb = app.add_subcommand("bench",
                                       "Measure the speed goals; prints one JSON object per line "
                                       "{name, value, unit, goal} (lower is better)");
-  verb->add_option("--repeats", *repeats, "Runs per figure (the median is reported)")
+  verb->add_option("--repeats", options->repeats, "Runs per figure (the median is reported)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
+  verb->add_option("--epoch-shirts", options->epochShirts,
+                   "Shirts simulated for learn.epoch_seconds_w025, 80% of them trained on (fewer for a quick check)")
+      ->capture_default_str()
+      ->check(CLI::Range(10, 100000));
   auto only = std::make_shared<std::string>("all");
   verb->add_option("--only", *only,
                    "Which figures: all, procedural (body to simulation and files), learn or stitch (the PCA filter)")
       ->capture_default_str()
       ->check(CLI::IsMember({"all", "procedural", "learn", "stitch"}));
-  verb->callback([repeats, only] {
+  verb->callback([options, only] {
     const bench::FigureSink print = [](const nlohmann::ordered_json& figure) {
       std::cout << figure.dump() << std::endl;
     };
     for (bench::Suite suite : {bench::Suite::Procedural, bench::Suite::Learn, bench::Suite::Stitch})
-      if (*only == "all" || *only == bench::suiteName(suite)) bench::runSuite(suite, *repeats, print);
+      if (*only == "all" || *only == bench::suiteName(suite)) bench::runSuite(suite, *options, print);
   });
 }
 

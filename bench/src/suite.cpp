@@ -129,7 +129,7 @@ void benchFrameToGarment(const FigureSink& sink, int repeats, double peak) {
 /// decoder (GFLOP/s of useful arithmetic, a step counted as three forward passes), and one epoch of the whole decoder
 /// on 320 simulated shirts with its after-epoch errors over the train and regularisation splits, against the time that
 /// arithmetic takes at 30% of the peak (the bar: 15%).
-void benchSmallTraining(const FigureSink& sink, int repeats, int cores, double peak) {
+void benchSmallTraining(const FigureSink& sink, int repeats, int shirts, int cores, double peak) {
   for (learn::Architecture architecture : {learn::Architecture::Whole, learn::Architecture::Patch}) {
     learn::ModelSpec spec;
     spec.architecture = architecture;
@@ -144,7 +144,7 @@ void benchSmallTraining(const FigureSink& sink, int repeats, int cores, double p
   const auto dir = std::filesystem::temp_directory_path() / ("pixelcloth-bench-epoch-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   sim::GenerateOptions generate;
-  generate.count = 400;  // 320 train, 40 regularisation, 40 test
+  generate.count = shirts;  // 400: 320 train, 40 regularisation, 40 test
   generate.seed = 1;
   sim::generateDataset(dir / "data", generate);
   learn::TrainOptions options;
@@ -174,12 +174,12 @@ void benchSmallTraining(const FigureSink& sink, int repeats, int cores, double p
 
 /// The decoders at the paper's width (1), their inference by the oneDNN engine and by LibTorch, and a
 /// training step, against OpenBLAS's sgemm on every core measured in the same run.
-void benchLearning(const FigureSink& sink, int repeats) {
+void benchLearning(const FigureSink& sink, int repeats, int epochShirts) {
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const double peak = learn::sgemmGflops(4096, cores);
   emitLearned(sink, "learn.sgemm_4096", peak, "GFLOP/s", 0, 0, peak, true);
 
-  benchSmallTraining(sink, repeats, cores, peak);
+  benchSmallTraining(sink, repeats, epochShirts, cores, peak);
   learn::ModelSpec patchSpec;  // the patch decoder, pose in, width 1
   // Training first, while the process holds no decoders: a step allocates about 1 GB of activations and gradients.
   const int batch = 32;
@@ -343,13 +343,16 @@ void benchProcedural(const FigureSink& sink, int repeats) {
 const char* suiteName(Suite suite) { return kSuites.name(suite); }
 Suite suiteFromName(const std::string& name, const std::string& context) { return kSuites.fromName(name, context); }
 
-void runSuite(Suite suite, int repeats, const FigureSink& sink) {
+void runSuite(Suite suite, const SuiteOptions& options, const FigureSink& sink) {
+  const int repeats = options.repeats;
   PIXELCLOTH_CHECK(repeats >= 1 && repeats <= 100, "bench: " << repeats << " repeats, expected 1 to 100");
+  PIXELCLOTH_CHECK(options.epochShirts >= 10 && options.epochShirts <= 100000,
+                   "bench: " << options.epochShirts << " shirts for the epoch, expected 10 to 100000");
   switch (suite) {
     case Suite::Procedural:
       return benchProcedural(sink, repeats);
     case Suite::Learn:
-      return benchLearning(sink, repeats);
+      return benchLearning(sink, repeats, options.epochShirts);
     case Suite::Stitch:
       return benchStitching(sink);
   }

@@ -82,7 +82,7 @@ TEST_F(CliTest, NegativeSeedsAreRefusedInEveryVerb) {
 // left out here.
 TEST_F(CliTest, BenchPrintsOnlyJsonLines) {
   for (const char* group : {"procedural", "learn"}) {
-    CliRun run = runPixelcloth({"bench", "--repeats", "1", "--only", group});
+    CliRun run = runPixelcloth({"bench", "--repeats", "1", "--epoch-shirts", "10", "--only", group});
     ASSERT_EQ(run.status, 0) << run;
     int figures = 0;
     for (const std::string& line : lines(run.out)) {

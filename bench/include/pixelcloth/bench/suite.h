@@ -19,8 +19,13 @@ Suite suiteFromName(const std::string& name, const std::string& context);  ///< 
 /// Receives each figure as soon as it is measured.
 using FigureSink = std::function<void(const nlohmann::ordered_json& figure)>;
 
-/// Measures `suite`, the median of `repeats` runs (1 to 100) per figure, handing each figure to `sink`. Notes on
-/// what was measured go to stderr.
-void runSuite(Suite suite, int repeats, const FigureSink& sink);
+/// How much each suite measures.
+struct SuiteOptions {
+  int repeats = 5;        ///< runs per figure, the median reported, [1, 100]
+  int epochShirts = 400;  ///< shirts simulated for learn.epoch_seconds_w025 (80% train), [10, 100000]
+};
+
+/// Measures `suite`, handing each figure to `sink`. Notes on what was measured go to stderr.
+void runSuite(Suite suite, const SuiteOptions& options, const FigureSink& sink);
 
 }  // namespace pixelcloth::bench

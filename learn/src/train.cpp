@@ -374,7 +374,7 @@ NetworkReport trainNetwork(const TrainingData& data, NetworkJob& job, ModelSpec 
     record.normalLoss /= steps;
     record.edgeLoss /= steps;
     // The train error is the mean over the epoch's steps as they were taken (training mode, the weights moving):
-    // another forward pass over the whole train split would cost a third of the epoch again.
+    // another forward pass over the whole train split would cost about a quarter of the epoch again.
     record.trainErrorCm = 100 * trainErrorSum / static_cast<double>(data.train.size());
     record.regularisationErrorCm = errorCm(net, scaling, target, data, data.regularisation, vertices, device);
     record.seconds = secondsSince(start);

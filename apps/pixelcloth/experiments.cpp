@@ -35,7 +35,8 @@ void registerExperiments(CLI::App& app) {
       "The paper's experiments on simulated T-shirts and neckties: its tables with its figures beside ours, the PCA "
       "filter and GAN, body shapes and broken skinning, the necktie, and the learned refinement of marker "
       "reconstructions (results.md and figures/ in --out). A run resumes what an earlier one left in --out");
-  verb->add_option("--scale", args->scale, "small (a smoke run of a few minutes) or full (about two hours on 2 cores)")
+  verb->add_option("--scale", args->scale,
+                   "small (a smoke run of a few minutes) or full (about an hour and a half on 2 cores)")
       ->capture_default_str()
       ->check(CLI::IsMember({"small", "full"}));
   verb->add_option("--out", args->out, "Output folder (default: experiments/SCALE)");

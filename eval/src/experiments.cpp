@@ -116,19 +116,30 @@ class Run {
   Clock::time_point stepStart_ = Clock::now();
 };
 
-learn::TrainOptions cnnOptions(const ExperimentPlan& plan, learn::Architecture architecture) {
+learn::TrainOptions cnnOptions(const CnnBudget& budget, learn::Architecture architecture) {
   learn::TrainOptions options;
   options.model.architecture = architecture;
-  options.model.width = plan.width;
-  options.epochs = plan.epochs;
+  options.model.width = budget.width;
+  options.epochs = budget.epochs;
+  options.schedule = budget.schedule;
   options.seed = 0;
   return options;
 }
 
-std::string cnnFlags(const ExperimentPlan& plan) {
+/// The `pixelcloth train` flags of `budget`.
+std::string cnnFlags(const CnnBudget& budget) {
   std::ostringstream flags;
-  flags << "--width " << plan.width << " --epochs " << plan.epochs << " --seed 0";
+  flags << "--width " << budget.width << " --epochs " << budget.epochs;
+  if (budget.schedule != learn::Schedule::Constant) flags << " --schedule " << learn::scheduleName(budget.schedule);
+  flags << " --seed 0";
   return flags.str();
+}
+
+void validateBudget(const CnnBudget& budget, const char* name) {
+  PIXELCLOTH_CHECK(std::isfinite(budget.width) && budget.width > 0 && budget.width <= 4,
+                   "experiments: " << name << " width " << budget.width << ", expected (0, 4]");
+  PIXELCLOTH_CHECK(budget.epochs >= 1,
+                   "experiments: " << name << " epochs " << budget.epochs << ", expected 1 or more");
 }
 
 }  // namespace
@@ -156,11 +167,17 @@ Scale scaleFromName(const std::string& name, const std::string& context) { retur
 ExperimentPlan ExperimentPlan::ofScale(Scale scale) {
   ExperimentPlan plan;
   if (scale == Scale::Full) {
-    // Sized from the last full run's times (600 T-shirts and 1000 neckties took 54 minutes, training time growing a
-    // little faster than the data) to finish in about two hours on 2 cores.
-    plan.tshirts = 1000;
+    // 400 T-shirts (320 train) and networks wide enough to fit them: the paper's width for the whole decoder and half
+    // of it for the 28 patch decoders, each with a cosine schedule (docs/learning.md, "Width and the learning-rate
+    // schedule"). The comparisons within one architecture (losses, bodies) and the residual decoders, whose targets
+    // are small, train at a quarter width. About an hour and a half on 2 cores.
+    plan.tshirts = 400;
     plan.neckties = 1700;
-    plan.epochs = 10;
+    plan.whole = {1.0, 50, learn::Schedule::Cosine};
+    plan.patches = {0.5, 20, learn::Schedule::Cosine};
+    plan.residual = {0.25, 10, learn::Schedule::Cosine};
+    plan.ablation = {0.25, 10, learn::Schedule::Cosine};
+    plan.necktie = {0.125, 50, learn::Schedule::Cosine};
     plan.fcEpochs = 40;
     plan.ganEpochs = 3;
   }
@@ -177,10 +194,14 @@ ExperimentPlan ExperimentPlan::ofScale(Scale scale) {
 void ExperimentPlan::validate() const {
   PIXELCLOTH_CHECK(tshirts >= 4 && neckties >= 4,
                    "experiments: " << tshirts << " T-shirts and " << neckties << " neckties, expected 4 or more each");
-  PIXELCLOTH_CHECK(std::isfinite(width) && width > 0 && width <= 4,
-                   "experiments: width " << width << ", expected (0, 4]");
-  PIXELCLOTH_CHECK(epochs >= 1 && fcEpochs >= 1 && ganEpochs >= 1,
-                   "experiments: epochs " << epochs << ", " << fcEpochs << ", " << ganEpochs << ", expected 1 or more");
+  validateBudget(whole, "whole decoder");
+  validateBudget(patches, "patch decoders");
+  validateBudget(residual, "residual decoders");
+  validateBudget(ablation, "ablation");
+  validateBudget(necktie, "necktie");
+  PIXELCLOTH_CHECK(fcEpochs >= 1 && ganEpochs >= 1, "experiments: fully connected epochs "
+                                                        << fcEpochs << ", GAN epochs " << ganEpochs
+                                                        << ", expected 1 or more");
   PIXELCLOTH_CHECK(pcaComponents >= 1, "experiments: " << pcaComponents << " principal components, expected 1 or more");
   PIXELCLOTH_CHECK(threads >= 0 && threads <= 256, "experiments: threads " << threads << ", expected 0 to 256");
   for (const BodyVariant& body : bodies) {
@@ -214,23 +235,25 @@ ExperimentResults runExperiments(const ExperimentPlan& plan, const fs::path& out
   run.step("datasets");
 
   // Table 1: the whole-garment CNN by loss (no normal loss, then L2 with the paper's 0.01).
-  const std::string common = cnnFlags(plan);
+  const std::string ablation = cnnFlags(plan.ablation);
   for (const auto& [name, loss, normal] :
        {std::tuple<const char*, learn::ImageLoss, double>{"whole_l1", learn::ImageLoss::L1, 0.0},
         {"whole_l2", learn::ImageLoss::L2, 0.0},
         {"whole_l2n", learn::ImageLoss::L2, 0.01}}) {
-    learn::TrainOptions options = cnnOptions(plan, learn::Architecture::Whole);
+    learn::TrainOptions options = cnnOptions(plan.ablation, learn::Architecture::Whole);
     options.loss = loss;
     options.normalWeight = normal;
     std::ostringstream flags;
-    flags << "--model whole --loss " << learn::imageLossName(loss) << " --normal-weight " << normal << " " << common;
+    flags << "--model whole --loss " << learn::imageLossName(loss) << " --normal-weight " << normal << " " << ablation;
     run.model(name, shirts, options, flags.str());
   }
   run.step("Table 1 (loss)");
 
   // Whole garment against 28 patches, both with the garment's default normal weight.
-  run.model("patch_l1", shirts, cnnOptions(plan, learn::Architecture::Patch), "--model patch --loss l1 " + common);
-  run.model("whole_default", shirts, cnnOptions(plan, learn::Architecture::Whole), "--model whole --loss l1 " + common);
+  run.model("patch_l1", shirts, cnnOptions(plan.patches, learn::Architecture::Patch),
+            "--model patch --loss l1 " + cnnFlags(plan.patches));
+  run.model("whole_default", shirts, cnnOptions(plan.whole, learn::Architecture::Whole),
+            "--model whole --loss l1 " + cnnFlags(plan.whole));
   run.step("whole against patches");
 
   // Table 2: fully connected, direct and through principal components, in the three spaces.
@@ -289,7 +312,8 @@ ExperimentResults runExperiments(const ExperimentPlan& plan, const fs::path& out
   }
   run.step("PCA filter and GAN");
 
-  // Wrong body shapes and broken skinning: the same shirts rebased onto each body, the whole CNN trained on each.
+  // Wrong body shapes and broken skinning: the same shirts rebased onto each body, the whole CNN trained on each as
+  // Table 1's L1 row was on the body simulated on.
   for (const BodyVariant& variant : plan.bodies) {
     const fs::path rebased = out / "data" / ("tshirt_" + variant.name);
     if (!fs::is_regular_file(rebased / "manifest.json")) {
@@ -310,18 +334,16 @@ ExperimentResults runExperiments(const ExperimentPlan& plan, const fs::path& out
                                                 : "--corrupt-weights " + variant.corruptWeights) +
                 " --out bodies/" + variant.name + " && pixelcloth dataset rebase data/tshirt --body bodies/" +
                 variant.name + " --out data/tshirt_" + variant.name);
-    run.model("whole_" + variant.name, rebased, cnnOptions(plan, learn::Architecture::Whole),
-              "--model whole --loss l1 " + common);
+    learn::TrainOptions options = cnnOptions(plan.ablation, learn::Architecture::Whole);
+    options.normalWeight = 0;
+    run.model("whole_" + variant.name, rebased, options, "--model whole --loss l1 --normal-weight 0 " + ablation);
   }
   run.step("body shapes and skinning");
 
   // The necktie: 36 pose floats, root-frame offsets and the edge loss (the garment's defaults).
-  learn::TrainOptions tie = cnnOptions(plan, learn::Architecture::Necktie);
-  tie.epochs = plan.epochs * 10;
+  learn::TrainOptions tie = cnnOptions(plan.necktie, learn::Architecture::Necktie);
   tie.batch = 4;
-  run.model("necktie", results.necktie.folder, tie,
-            "--model necktie --width " + std::to_string(plan.width) + " --epochs " + std::to_string(tie.epochs) +
-                " --batch 4 --seed 0");
+  run.model("necktie", results.necktie.folder, tie, "--model necktie --batch 4 " + cnnFlags(plan.necktie));
   run.step("necktie");
 
   // The learned refinement of the marker reconstruction: residual patch decoders on clean and noisy markers.
@@ -337,13 +359,14 @@ ExperimentResults runExperiments(const ExperimentPlan& plan, const fs::path& out
     noise << noiseCm;
     run.command("pixelcloth reconstruct --dataset data/tshirt --write-base bases/" + std::string(name) + " --noise " +
                 noise.str());
-    learn::TrainOptions options = cnnOptions(plan, learn::Architecture::Patch);
+    learn::TrainOptions options = cnnOptions(plan.residual, learn::Architecture::Patch);
     options.residual = bases;
     RefinementFigures refinement;
     refinement.noiseCm = noiseCm;
-    refinement.residual = run.model(std::string("residual_") + name, shirts, options,
-                                    "--model patch --residual bases/" + std::string(name) + " " + common,
-                                    {stitch::StitchMode{}, {stitch::StitchKind::Pca, results.pcaK, {}}}, pca);
+    refinement.residual =
+        run.model(std::string("residual_") + name, shirts, options,
+                  "--model patch --residual bases/" + std::string(name) + " " + cnnFlags(plan.residual),
+                  {stitch::StitchMode{}, {stitch::StitchKind::Pca, results.pcaK, {}}}, pca);
     const nlohmann::json& base = refinement.residual.test.front().metrics["base_vertex_error_cm"];
     if (base.is_number()) refinement.markersAloneCm = base.get<double>();
     results.refinement.push_back(std::move(refinement));

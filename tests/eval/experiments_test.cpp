@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "pixelcloth/core/atomic_file.h"
@@ -21,7 +22,9 @@ pe::ExperimentPlan tinyPlan() {
   pe::ExperimentPlan plan;
   plan.tshirts = 10;
   plan.neckties = 10;
-  plan.epochs = 1;
+  plan.whole.epochs = plan.patches.epochs = plan.residual.epochs = plan.ablation.epochs = 1;
+  plan.necktie.epochs = 10;
+  plan.patches.schedule = pixelcloth::learn::Schedule::Cosine;
   plan.fcEpochs = 2;
   plan.ganEpochs = 1;
   plan.pcaComponents = 4;
@@ -48,7 +51,11 @@ TEST(Experiments, ATinyPlanRunsEveryExperimentAndItsReportPutsThePapersFiguresBe
     EXPECT_TRUE(fs::is_directory(m.folder));
   }
   // The rebased shirts are the same samples on another body: other errors, the same count.
-  EXPECT_NE(results.model("whole_shape_2").testCm, results.model("whole_default").testCm);
+  EXPECT_NE(results.model("whole_shape_2").testCm, results.model("whole_l1").testCm);
+  // Each family trains on its own budget, and its command says so.
+  EXPECT_TRUE(std::any_of(results.commands.begin(), results.commands.end(), [](const std::string& c) {
+    return c.find("--model patch --loss l1 --width 0.125 --epochs 1 --schedule cosine") != std::string::npos;
+  }));
   // Mean, pca:1 ... pca:rank, gan; k chosen among the pca modes.
   ASSERT_GE(results.stitchSweep.size(), 4u);
   EXPECT_EQ(results.stitchSweep.front().mode.kind, pixelcloth::stitch::StitchKind::Mean);
@@ -70,7 +77,8 @@ TEST(Experiments, ATinyPlanRunsEveryExperimentAndItsReportPutsThePapersFiguresBe
   const std::string md = pixelcloth::core::readTextFile(out / "results.md");
   for (const char* text : {"## 1. Loss", "| L1 | ", "0.44", "## 2. Whole garment", "0.46", "## 3. Fully connected",
                            "| local |", "0.55", "## 4. Stitching", "| gan |", "## 5, 6.", "weights_torso",
-                           "## 7. Necktie", "## 8. Learned refinement", "## Commands", "pixelcloth generate"})
+                           "## 7. Necktie", "## 8. Learned refinement", "## Commands", "pixelcloth generate",
+                           "pose-only patch decoders (sections 2, 4 and 8): width 0.125, 1 epoch, cosine schedule"})
     EXPECT_NE(md.find(text), std::string::npos) << text;
   for (const char* figure : {"error_maps_whole.png", "error_maps_patch.png", "body_shapes.png"})
     EXPECT_GT(fs::file_size(out / "figures" / figure), 1000u) << figure;
@@ -92,5 +100,13 @@ TEST(Experiments, BadPlansAreRefusedNamingTheField) {
   plan.bodies.push_back({"huge", 5, ""});
   EXPECT_FALSE(inputErrorOf([&] { plan.validate(); }).empty());
   EXPECT_NE(inputErrorOf([] { pe::scaleFromName("medium", "--scale"); }).find("small or full"), std::string::npos);
-  EXPECT_EQ(pe::ExperimentPlan::ofScale(pe::Scale::Full).bodies.size(), 8u);
+  plan = tinyPlan();
+  plan.residual.width = 0;
+  EXPECT_NE(inputErrorOf([&] { plan.validate(); }).find("residual decoders width 0"), std::string::npos);
+  plan = tinyPlan();
+  plan.necktie.epochs = 0;
+  EXPECT_NE(inputErrorOf([&] { plan.validate(); }).find("necktie epochs 0"), std::string::npos);
+  const pe::ExperimentPlan full = pe::ExperimentPlan::ofScale(pe::Scale::Full);
+  EXPECT_EQ(full.bodies.size(), 8u);
+  EXPECT_NO_THROW(full.validate());
 }

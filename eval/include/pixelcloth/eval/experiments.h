@@ -18,12 +18,13 @@
 #include <vector>
 
 #include "pixelcloth/data/dataset.h"
+#include "pixelcloth/learn/train.h"
 #include "pixelcloth/stitch/evaluate.h"
 #include "pixelcloth/stitch/pca_filter.h"
 
 namespace pixelcloth::eval {
 
-/// The two sizes of the plan: a smoke run of a few minutes, and the full run of about two hours on 2 cores.
+/// The two sizes of the plan: a smoke run of a few minutes, and the full run of about an hour and a half on 2 cores.
 enum class Scale { Small, Full };
 const char* scaleName(Scale scale);                                        ///< "small", "full"
 Scale scaleFromName(const std::string& name, const std::string& context);  ///< InputError naming `context` otherwise
@@ -35,13 +36,28 @@ struct BodyVariant {
   std::string corruptWeights;  ///< "", "torso" or "torso+arm" (body::corruptUpperArmWeights)
 };
 
+/// How long and how wide one family of CNNs trains.
+struct CnnBudget {
+  double width = 0.125;  ///< channel multiplier (the paper's is 1)
+  int epochs = 3;
+  learn::Schedule schedule = learn::Schedule::Constant;  ///< the learning rate over the run
+};
+
 /// What the experiments do, and how big.
 struct ExperimentPlan {
-  int tshirts = 40;      ///< T-shirt samples simulated
-  int neckties = 60;     ///< necktie samples simulated
-  double width = 0.125;  ///< channel multiplier of the CNNs (the paper's is 1)
-  int epochs = 3;        ///< CNN epochs (the necktie's: ten times as many)
-  int fcEpochs = 30;     ///< fully connected baselines' epochs
+  int tshirts = 40;   ///< T-shirt samples simulated
+  int neckties = 60;  ///< necktie samples simulated
+  /// The whole-garment decoder that stands against the patches and the fully connected baselines.
+  CnnBudget whole;
+  /// The 28 pose-only patch decoders.
+  CnnBudget patches;
+  /// The 28 residual patch decoders of the learned refinement (their targets are the small marker-fill errors).
+  CnnBudget residual;
+  /// The comparisons within one architecture: Table 1's three losses and the body-shape and skinning rows (each
+  /// against the L1 row of Table 1, trained alike).
+  CnnBudget ablation;
+  CnnBudget necktie{0.125, 30, learn::Schedule::Constant};
+  int fcEpochs = 30;  ///< fully connected baselines' epochs
   int ganEpochs = 1;
   int pcaComponents = 128;          ///< Table 2's principal components (at most the train samples)
   std::vector<BodyVariant> bodies;  ///< the bodies of the shape and skinning experiments

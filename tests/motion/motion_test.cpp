@@ -1,0 +1,368 @@
+// Motion clips in through assimp, retargeted to our skeleton. The clips are written here as users have them: BVH in
+// other axes (Z up, turned), other units (inches), other channel orders, an A-pose rest, extra joints (legs, a second
+// neck joint, hands), CMU and Mixamo naming; the retargeting is checked against the poses the clips were made from
+// and by forward kinematics.
+#include "pixelcloth/motion/motion.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "pixelcloth/body/body.h"
+#include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/error.h"
+#include "support/test_util.h"
+
+namespace fs = std::filesystem;
+namespace pb = pixelcloth::body;
+namespace pm = pixelcloth::motion;
+using pixelcloth::testing::inputErrorOf;
+
+namespace {
+
+constexpr double kInch = 1 / 0.0254;  // clip units per metre
+
+Eigen::Matrix3d axisRotation(int axis, double degrees) {
+  return Eigen::AngleAxisd(degrees * M_PI / 180, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+}
+
+/// One joint of a clip made from our skeleton.
+struct ClipJoint {
+  std::string name;
+  int parent;                ///< index in the clip, -1 for the root
+  Eigen::Vector3d restOurs;  ///< rest position in our axes, metres
+  std::string channels;      ///< rotation channel order, e.g. "YXZ"
+  int pose = -1;             ///< the pose joint it carries (kPoseJoints index), -1 none
+};
+
+/// A BVH of our skeleton in clip axes C (clip = C * ours), in inches, named by `names` (root, the 10 pose joints,
+/// head, hands), with extra joints (legs, a second neck joint), and per frame the given poses and root motion.
+/// `lowerArms`: the rest pose's arms lowered by that many degrees (an A-pose); the frames then carry the rotations
+/// that put the bones where the poses put ours.
+struct BvhClip {
+  std::vector<ClipJoint> joints;
+  Eigen::Matrix3d C;
+  double lowerArms = 0;
+  std::vector<pb::Pose> poses;
+  std::vector<Eigen::Matrix3d> rootRotations;     ///< our axes
+  std::vector<Eigen::Vector3d> rootTranslations;  ///< our axes, metres
+
+  /// World rotation (clip axes) of every clip joint at frame f, and the rest bone correction of each.
+  std::vector<Eigen::Matrix3d> globals(int f, const pb::Skeleton& skeleton) const {
+    const pb::JointTransforms ours = pb::forwardKinematics(skeleton, poses[f]);
+    std::vector<Eigen::Matrix3d> g(joints.size());
+    for (size_t j = 0; j < joints.size(); ++j) {
+      const ClipJoint& joint = joints[j];
+      if (joint.parent < 0) {
+        g[j] = C * rootRotations[f] * C.transpose();
+        continue;
+      }
+      if (joint.pose < 0) {  // follows its parent
+        g[j] = g[joint.parent];
+        continue;
+      }
+      const int s = skeleton.index(pb::kPoseJoints[joint.pose]);
+      // Our global rotation, undoing the rest pose's lowering of the arm bones: G_clip = G_ours * Q^-1.
+      Eigen::Matrix3d q = Eigen::Matrix3d::Identity();
+      const std::string& n = pb::kPoseJoints[joint.pose];
+      if (n == "l_arm" || n == "l_forearm") q = axisRotation(2, -lowerArms);
+      if (n == "r_arm" || n == "r_forearm") q = axisRotation(2, lowerArms);
+      g[j] = C * rootRotations[f] * ours.rotations[s] * q.transpose() * C.transpose();
+    }
+    return g;
+  }
+
+  /// Rest positions in clip axes and units, with the arms lowered.
+  std::vector<Eigen::Vector3d> restClip(const pb::Skeleton& skeleton) const {
+    std::vector<Eigen::Vector3d> rest(joints.size());
+    for (size_t j = 0; j < joints.size(); ++j) {
+      Eigen::Vector3d p = joints[j].restOurs;
+      // Lower every joint past a shoulder (the arm, forearm, hand) about the arm joint.
+      for (const char* side : {"l", "r"}) {
+        const Eigen::Vector3d pivot = skeleton.positions.row(skeleton.index(std::string(side) + "_arm")).transpose();
+        const bool beyond = (side[0] == 'l' ? p.x() > pivot.x() + 1e-9 : p.x() < pivot.x() - 1e-9);
+        if (beyond) p = pivot + axisRotation(2, side[0] == 'l' ? -lowerArms : lowerArms) * (p - pivot);
+      }
+      rest[j] = kInch * C * p;
+    }
+    return rest;
+  }
+
+  std::string text(const pb::Skeleton& skeleton) const {
+    const std::vector<Eigen::Vector3d> rest = restClip(skeleton);
+    std::ostringstream out;
+    out << std::setprecision(10);
+    std::function<void(int, int)> write = [&](int j, int depth) {
+      const std::string pad(2 * depth, ' ');
+      const ClipJoint& joint = joints[j];
+      out << pad << (joint.parent < 0 ? "ROOT " : "JOINT ") << joint.name << "\n" << pad << "{\n";
+      const Eigen::Vector3d offset = joint.parent < 0 ? rest[j] : Eigen::Vector3d(rest[j] - rest[joint.parent]);
+      out << pad << "  OFFSET " << offset.x() << " " << offset.y() << " " << offset.z() << "\n";
+      out << pad << "  CHANNELS " << (joint.parent < 0 ? "6 Xposition Yposition Zposition" : "3");
+      for (char axis : joint.channels) out << " " << axis << "rotation";
+      out << "\n";
+      bool leaf = true;
+      for (size_t c = 0; c < joints.size(); ++c)
+        if (joints[c].parent == j) {
+          write(static_cast<int>(c), depth + 1);
+          leaf = false;
+        }
+      if (leaf)
+        out << pad << "  End Site\n" << pad << "  {\n" << pad << "    OFFSET 0 " << 2.0 << " 0\n" << pad << "  }\n";
+      out << pad << "}\n";
+    };
+    out << "HIERARCHY\n";
+    write(0, 0);
+    out << "MOTION\nFrames: " << poses.size() << "\nFrame Time: 0.0333333\n";
+    for (size_t f = 0; f < poses.size(); ++f) {
+      const std::vector<Eigen::Matrix3d> g = globals(static_cast<int>(f), skeleton);
+      for (size_t j = 0; j < joints.size(); ++j) {
+        if (joints[j].parent < 0) {
+          const Eigen::Vector3d p = rest[j] + kInch * C * rootTranslations[f];
+          out << p.x() << " " << p.y() << " " << p.z() << " ";
+        }
+        const Eigen::Matrix3d local =
+            joints[j].parent < 0 ? g[j] : Eigen::Matrix3d(g[joints[j].parent].transpose() * g[j]);
+        // BVH: R = R_first * R_second * R_third in channel order.
+        const auto axis = [](char a) { return a == 'X' ? 0 : a == 'Y' ? 1 : 2; };
+        const Eigen::Vector3d e =
+            local.eulerAngles(axis(joints[j].channels[0]), axis(joints[j].channels[1]), axis(joints[j].channels[2])) *
+            180 / M_PI;
+        out << e.x() << " " << e.y() << " " << e.z() << " ";
+      }
+      out << "\n";
+    }
+    return out.str();
+  }
+};
+
+/// Our skeleton as a clip named `names` (root, the 10 pose joints in kPoseJoints order, head, left hand, right hand).
+BvhClip clipOf(const pb::Skeleton& s, const std::vector<std::string>& names, bool secondNeck) {
+  BvhClip clip;
+  auto pos = [&](const std::string& joint) { return Eigen::Vector3d(s.positions.row(s.index(joint)).transpose()); };
+  auto& J = clip.joints;
+  J.push_back({names[0], -1, pos("root"), "ZXY", -1});
+  J.push_back({"LHipJoint", 0, pos("root") + Eigen::Vector3d(0.08, -0.05, 0), "YXZ", -1});  // legs: not ours
+  J.push_back({"LeftUpLeg", 1, pos("root") + Eigen::Vector3d(0.09, -0.45, 0), "YXZ", -1});
+  const std::vector<std::string> spine = {"lower_back", "spine", "spine1", "neck"};
+  int parent = 0;
+  for (int k = 0; k < 4; ++k) {
+    J.push_back({names[1 + k], parent, pos(spine[k]), k % 2 ? "XZY" : "YXZ", k});
+    parent = static_cast<int>(J.size()) - 1;
+  }
+  const int neck = parent, spine1 = neck - 1;
+  if (secondNeck) {
+    J.push_back({"Neck1", neck, 0.5 * (pos("neck") + pos("head")), "YXZ", -1});
+    parent = static_cast<int>(J.size()) - 1;
+  }
+  J.push_back({names[11], parent, pos("head"), "YXZ", -1});
+  for (int side = 0; side < 2; ++side) {
+    parent = spine1;
+    for (int k = 0; k < 3; ++k) {
+      J.push_back({names[5 + 3 * side + k], parent, pos(pb::kPoseJoints[4 + 3 * side + k]), "ZYX", 4 + 3 * side + k});
+      parent = static_cast<int>(J.size()) - 1;
+    }
+    const int forearm = s.index(side ? "r_forearm" : "l_forearm");
+    J.push_back({names[12 + side], parent, Eigen::Vector3d(s.boneEnds.row(forearm).transpose()), "ZYX", -1});
+  }
+  return clip;
+}
+
+const std::vector<std::string> kCmuNames = {"Hips",         "LowerBack", "Spine",       "Spine1",        "Neck",
+                                            "LeftShoulder", "LeftArm",   "LeftForeArm", "RightShoulder", "RightArm",
+                                            "RightForeArm", "Head",      "LeftHand",    "RightHand"};
+const std::vector<std::string> kMixamoNames = {
+    "mixamorig:Hips",          "mixamorig:Spine",        "mixamorig:Spine1",       "mixamorig:Spine2",
+    "mixamorig:Neck",          "mixamorig:LeftShoulder", "mixamorig:LeftArm",      "mixamorig:LeftForeArm",
+    "mixamorig:RightShoulder", "mixamorig:RightArm",     "mixamorig:RightForeArm", "mixamorig:Head",
+    "mixamorig:LeftHand",      "mixamorig:RightHand"};
+
+fs::path writeClip(const fs::path& folder, const std::string& name, const std::string& text) {
+  const fs::path path = folder / name;
+  pixelcloth::core::writeTextAtomically(path, text);
+  return path;
+}
+
+/// A clip of `frames` poses drawn within 80% of the limits, the root turning and walking.
+BvhClip walkingClip(const pb::Skeleton& s, const std::vector<std::string>& names, int frames, bool secondNeck) {
+  BvhClip clip = clipOf(s, names, secondNeck);
+  for (int f = 0; f < frames; ++f) {
+    clip.poses.push_back(pb::randomPose(100 + f, 0.8));
+    clip.rootRotations.push_back(axisRotation(1, 25.0 * f) * axisRotation(0, 5.0 * f));
+    clip.rootTranslations.push_back(Eigen::Vector3d(0.1 * f, 0.02 * f, -0.05 * f));
+  }
+  return clip;
+}
+
+double rotationDistance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) { return (a - b).cwiseAbs().maxCoeff(); }
+
+}  // namespace
+
+TEST(Motion, ACmuBvhInOtherAxesUnitsAndChannelOrdersComesBackAsThePosesItWasMadeFrom) {
+  const pb::Skeleton skeleton = pb::mannequinSkeleton();
+  BvhClip made = walkingClip(skeleton, kCmuNames, 6, true);
+  made.C = axisRotation(0, 90) * axisRotation(1, 30);  // Z up, turned 30 degrees
+  const fs::path dir = pixelcloth::testing::freshDir("motion_cmu");
+  const pm::Clip clip = pm::readClip(writeClip(dir, "walk.bvh", made.text(skeleton)));
+  EXPECT_EQ(clip.frames(), 6);
+  EXPECT_NEAR(clip.fps, 30.0, 1e-3);
+  const pm::JointMap map = pm::detectJointMap(clip);
+  EXPECT_EQ(map.name, "cmu");
+  const pm::Motion motion = pm::retarget(clip, skeleton, map);
+  ASSERT_EQ(motion.frames(), 6);
+  EXPECT_NEAR(motion.rootScale, 0.0254, 1e-6);  // inches
+  for (int f = 0; f < motion.frames(); ++f) {
+    SCOPED_TRACE(f);
+    for (int k = 0; k < 10; ++k)
+      EXPECT_LT(rotationDistance(motion.poses[f].rotations[k], made.poses[f].rotations[k]), 1e-4) << pb::kPoseJoints[k];
+    EXPECT_LT(rotationDistance(motion.rootRotations[f], made.rootRotations[f]), 1e-4);
+    EXPECT_LT((motion.rootTranslations.row(f).transpose() - made.rootTranslations[f]).norm(), 1e-5);
+  }
+}
+
+TEST(Motion, AnAPoseMixamoClipPutsOurBonesWhereItsOwnAre) {
+  const pb::Skeleton skeleton = pb::mannequinSkeleton();
+  BvhClip made = walkingClip(skeleton, kMixamoNames, 4, false);
+  made.C = axisRotation(1, -90);  // facing +X
+  made.lowerArms = 40;
+  const fs::path dir = pixelcloth::testing::freshDir("motion_mixamo");
+  const pm::Clip clip = pm::readClip(writeClip(dir, "apose.bvh", made.text(skeleton)));
+  const pm::JointMap map = pm::detectJointMap(clip);
+  EXPECT_EQ(map.name, "mixamo");
+  const pm::Motion motion = pm::retarget(clip, skeleton, map);
+  // Forward kinematics on both sides: every bone of ours points as the clip's (root-relative, in our axes).
+  const Eigen::Matrix3d A = made.C.transpose();
+  for (int f = 0; f < motion.frames(); ++f) {
+    const pb::JointTransforms ours = pb::forwardKinematics(skeleton, motion.poses[f]);
+    const Eigen::Matrix3d rootInverse =
+        (A * clip.rotations[f][clip.find("mixamorig:Hips")] * A.transpose()).transpose();
+    for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+             {"l_arm", "l_forearm"}, {"r_arm", "r_forearm"}, {"spine", "spine1"}, {"l_shoulder", "l_arm"}}) {
+      SCOPED_TRACE(from);
+      const Eigen::Vector3d bone =
+          (ours.positions.row(skeleton.index(to)) - ours.positions.row(skeleton.index(from))).normalized().transpose();
+      const std::string a = map.joints.at(from), b = map.joints.at(to);
+      const Eigen::Vector3d clipBone =
+          rootInverse * A * (clip.positions[f].row(clip.find(b)) - clip.positions[f].row(clip.find(a))).transpose();
+      EXPECT_GT(bone.dot(clipBone.normalized()), 1 - 1e-6);
+    }
+    // The rotations too, up to the twist about a bone that no bone direction fixes.
+    for (int k = 0; k < 10; ++k)
+      EXPECT_LT(rotationDistance(motion.poses[f].rotations[k], made.poses[f].rotations[k]), 0.02) << pb::kPoseJoints[k];
+  }
+}
+
+TEST(Motion, FramesBeyondTheJointLimitsAreRefusedNamingTheFrameOrClampedAndCounted) {
+  const pb::Skeleton skeleton = pb::mannequinSkeleton();
+  BvhClip made = walkingClip(skeleton, kCmuNames, 3, true);
+  made.C = Eigen::Matrix3d::Identity();
+  // Frame 1: the left forearm bent 29 degrees about z, beyond its limit of 0 (real motion capture does this).
+  Eigen::Matrix<double, 10, 3> degrees = Eigen::Matrix<double, 10, 3>::Zero();
+  degrees(6, 2) = 29;
+  made.poses[1] = pb::Pose::fromEulerDegrees(degrees);
+  ASSERT_FALSE(made.poses[1].withinLimits());
+  const fs::path dir = pixelcloth::testing::freshDir("motion_limits");
+  const pm::Clip clip = pm::readClip(writeClip(dir, "beyond.bvh", made.text(skeleton)));
+  const pm::JointMap map = pm::detectJointMap(clip);
+  const std::string refused = inputErrorOf([&] { pm::retarget(clip, skeleton, map); });
+  EXPECT_NE(refused.find("beyond.bvh: frame 1"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("l_forearm"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("--clamp-to-limits"), std::string::npos) << refused;
+  const pm::Motion clamped = pm::retarget(clip, skeleton, map, pb::BeyondLimits::Clamp);
+  EXPECT_EQ(clamped.clampedFrames, 1);
+  for (const pb::Pose& pose : clamped.poses) EXPECT_TRUE(pose.withinLimits(1e-3));
+}
+
+TEST(Motion, AMotionFolderReadsBackAsItWasWritten) {
+  const pb::Skeleton skeleton = pb::mannequinSkeleton();
+  BvhClip made = walkingClip(skeleton, kCmuNames, 5, true);
+  made.C = Eigen::Matrix3d::Identity();
+  const fs::path dir = pixelcloth::testing::freshDir("motion_folder");
+  const pm::Clip clip = pm::readClip(writeClip(dir, "walk.bvh", made.text(skeleton)));
+  const pm::Motion motion = pm::retarget(clip, skeleton, pm::detectJointMap(clip));
+  pm::writeMotion(dir / "m", motion);
+  const pm::Motion back = pm::readMotion(dir / "m");
+  ASSERT_EQ(back.frames(), 5);
+  EXPECT_EQ(back.fps, motion.fps);
+  EXPECT_EQ(back.map.joints, motion.map.joints);
+  EXPECT_EQ(back.source, motion.source);
+  for (int f = 0; f < 5; ++f) {
+    for (int k = 0; k < 10; ++k)
+      EXPECT_LT(rotationDistance(back.poses[f].rotations[k], motion.poses[f].rotations[k]), 1e-6);
+    EXPECT_LT(rotationDistance(back.rootRotations[f], motion.rootRotations[f]), 1e-12);
+    EXPECT_EQ(back.rootTranslations.row(f), motion.rootTranslations.row(f));
+  }
+  // A poses.npy of another frame count is refused naming it.
+  pm::Motion shorter = motion;
+  shorter.poses.resize(2);
+  shorter.rootRotations.resize(2);
+  shorter.rootTranslations.conservativeResize(2, 3);
+  pm::writeMotion(dir / "short", shorter);
+  fs::copy_file(dir / "short" / "poses.npy", dir / "m" / "poses.npy", fs::copy_options::overwrite_existing);
+  EXPECT_NE(inputErrorOf([&] { pm::readMotion(dir / "m"); }).find("poses.npy"), std::string::npos);
+  EXPECT_NE(inputErrorOf([&] { pm::readMotion(dir / "none"); }).find("no motion.json"), std::string::npos);
+}
+
+TEST(Motion, BadClipsAreRefusedNamingTheFile) {
+  const pb::Skeleton skeleton = pb::mannequinSkeleton();
+  BvhClip made = walkingClip(skeleton, kCmuNames, 3, true);
+  made.C = Eigen::Matrix3d::Identity();
+  const std::string good = made.text(skeleton);
+  const fs::path dir = pixelcloth::testing::freshDir("motion_bad");
+  auto errorOf = [&](const std::string& name, const std::string& text) {
+    const fs::path path = writeClip(dir, name, text);
+    return inputErrorOf([&] {
+      const pm::Clip clip = pm::readClip(path);
+      pm::retarget(clip, skeleton, pm::detectJointMap(clip));
+    });
+  };
+  EXPECT_NE(inputErrorOf([&] { pm::readClip(dir / "missing.bvh"); }).find("missing.bvh: no such motion clip"),
+            std::string::npos);
+  const std::string truncated = errorOf("truncated.bvh", good.substr(0, good.size() * 2 / 3));
+  EXPECT_NE(truncated.find("truncated.bvh"), std::string::npos) << truncated;
+  const size_t frames = good.find("Frames: 3");
+  ASSERT_NE(frames, std::string::npos);
+  std::string none = good.substr(0, frames) + "Frames: 0\nFrame Time: 0.0333333\n";
+  EXPECT_NE(errorOf("none.bvh", none).find("none.bvh"), std::string::npos);
+  std::string fast = good;
+  fast.replace(fast.find("Frame Time: 0.0333333"), 21, "Frame Time: 0.0000001");
+  EXPECT_NE(errorOf("fast.bvh", fast).find("expected 1 to 1000"), std::string::npos);
+  std::string nan = good;
+  const size_t motionStart = nan.find("Frame Time");
+  const size_t value = nan.find(' ', nan.find('\n', motionStart) + 1);  // the second number of frame 0
+  nan.replace(value + 1, nan.find(' ', value + 1) - value - 1, "nan");
+  EXPECT_NE(errorOf("nan.bvh", nan).find("not finite"), std::string::npos) << errorOf("nan.bvh", nan);
+  std::string renamed = good;
+  for (const char* from : {"LeftArm", "RightArm"})
+    for (size_t at = renamed.find(from); at != std::string::npos; at = renamed.find(from, at + 1))
+      renamed.replace(at, std::string(from).size(), std::string(from) == "LeftArm" ? "L_UpperArm" : "R_UpperArm");
+  const std::string unknown = errorOf("renamed.bvh", renamed);
+  EXPECT_NE(unknown.find("match none of the built-in joint maps"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("L_UpperArm"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("--map"), std::string::npos) << unknown;
+  EXPECT_NE(errorOf("garbage.bvh", "HIERARCHY\nROOT {\n").find("garbage.bvh"), std::string::npos);
+
+  // A map file for the renamed clip works; one naming a joint the clip lacks is refused.
+  const pm::Clip renamedClip = pm::readClip(dir / "renamed.bvh");
+  nlohmann::json map;
+  for (size_t k = 0; k < pm::mappedJoints().size(); ++k) map[pm::mappedJoints()[k]] = kCmuNames[k];
+  map["l_arm"] = "L_UpperArm";
+  map["r_arm"] = "R_UpperArm";
+  pixelcloth::core::writeTextAtomically(dir / "map.json", map.dump());
+  const pm::Motion motion = pm::retarget(renamedClip, skeleton, pm::readJointMap(dir / "map.json", renamedClip));
+  for (int k = 0; k < 10; ++k)
+    EXPECT_LT(rotationDistance(motion.poses[2].rotations[k], made.poses[2].rotations[k]), 1e-4);
+  map["l_forearm"] = "LeftElbow";
+  pixelcloth::core::writeTextAtomically(dir / "map.json", map.dump());
+  EXPECT_NE(inputErrorOf([&] { pm::readJointMap(dir / "map.json", renamedClip); }).find("no joint 'LeftElbow'"),
+            std::string::npos);
+  map["l_forearm"] = "LeftForeArm";
+  map["l_hand"] = "LeftHand";
+  pixelcloth::core::writeTextAtomically(dir / "map.json", map.dump());
+  EXPECT_NE(inputErrorOf([&] { pm::readJointMap(dir / "map.json", renamedClip); }).find("unknown joint 'l_hand'"),
+            std::string::npos);
+}

@@ -97,6 +97,7 @@ void runImport(const DatasetArgs& args) {
   data::ImportOptions options;
   options.body = bodyDescription;
   options.seed = args.seed;
+  options.beyondLimits = poseLimits();
   const data::DatasetSettings settings =
       data::importDataset(objs, args.poses, body, garment, rest, embedding, args.out, options);
   std::cout << "imported " << settings.count << " frames -> " << args.out << '\n';

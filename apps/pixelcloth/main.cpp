@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerStitch(app);
   pixelcloth::apps::registerPlot(app);
   pixelcloth::apps::registerExperiments(app);
+  pixelcloth::apps::registerMotion(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
   // Seeds are unsigned: "-1" would wrap to 2^64 - 1 and read as a valid, different seed. Refuse it in every verb.
   const CLI::Validator nonNegative(

@@ -5,6 +5,7 @@
 #include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/motion/motion.h"
 #include "pixelcloth/sim/pose_sampler.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
@@ -15,6 +16,7 @@ namespace {
 struct PoseArgs {
   std::string body;
   std::string pose;
+  std::string motion;
   int random = 0;
   std::uint64_t seed = 0;
   std::string out;
@@ -25,14 +27,21 @@ void runPose(const PoseArgs& args) {
   using namespace pixelcloth::body;
   using namespace pixelcloth::garment;
   using namespace pixelcloth::viz;
-  PIXELCLOTH_CHECK(args.pose.empty() != (args.random == 0),
-                   "pose: give either --pose POSE.json or --random N (with --seed S)");
+  PIXELCLOTH_CHECK(!args.pose.empty() + !args.motion.empty() + (args.random != 0) == 1,
+                   "pose: give one of --pose POSES.json, --motion M/ or --random N (with --seed S)");
   PIXELCLOTH_CHECK(args.random >= 0 && args.random <= 10000,
                    "pose: --random must be in [1, 10000], got " << args.random);
   Body body = loadBody(args.body);
   std::vector<Pose> poses;
+  nlohmann::json info = {{"body", args.body}};
   if (!args.pose.empty()) {
-    poses.push_back(readPose(args.pose, poseLimits()));
+    poses = readPoses(args.pose, poseLimits());
+    info["poses"] = args.pose;
+  } else if (!args.motion.empty()) {
+    const motion::Motion motion = motion::readMotion(args.motion, poseLimits());
+    poses = motion.poses;
+    info["motion"] = args.motion;
+    info["fps"] = motion.fps;
   } else {
     sim::PoseSamplerOptions options;
     options.seed = args.seed;
@@ -40,8 +49,10 @@ void runPose(const PoseArgs& args) {
     poses = sampler.sample(args.random);
     PIXELCLOTH_INFO("pose: " << sampler.stats().rejectedArmInsideTorso << " drawn poses rejected (an arm inside the "
                              << "torso) for " << args.random << " kept");
+    info["seed"] = args.seed;
+    info["sampler"] = "appendix";
   }
-  writePosedBodies(args.out, body, poses, {{"body", args.body}, {"seed", args.seed}, {"sampler", "appendix"}});
+  writePosedBodies(args.out, body, poses, info);
   PIXELCLOTH_INFO("pose: " << poses.size() << " posed meshes -> " << args.out
                            << "/{posed_NNN.obj, poses.json, poses.npy, posed.png}");
 }
@@ -52,7 +63,9 @@ void registerPose(CLI::App& app) {
   CLI::App* verb = app.add_subcommand("pose", "Pose a body folder by linear blend skinning: posed OBJs and a picture");
   verb->add_option("--body", args->body, "Body folder written by 'pixelcloth body'")->required();
   verb->add_option("--pose", args->pose,
-                   "Pose JSON: {\"pose\": [90 numbers]} or {\"joints\": {\"l_arm\": {\"euler_deg\": [x, y, z]}}}");
+                   "Pose JSON: {\"pose\": [90 numbers]}, {\"joints\": {\"l_arm\": {\"euler_deg\": [x, y, z]}}}, a list "
+                   "of them, or the poses.json this verb writes");
+  verb->add_option("--motion", args->motion, "Motion folder from `pixelcloth motion import`: every frame posed");
   verb->add_option("--random", args->random,
                    "Number of random poses from the paper's sampler (half-normal centre line; uniform azimuth, "
                    "sine-altitude and twist for the arms; arms inside the torso rejected)");

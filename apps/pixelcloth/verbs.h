@@ -47,5 +47,7 @@ void registerStitch(CLI::App& app);
 /// `plot`: a line chart of a small JSON table.
 void registerPlot(CLI::App& app);
 void registerExperiments(CLI::App& app);
+/// `motion import`: a motion-capture clip retargeted to the body (motion/).
+void registerMotion(CLI::App& app);
 
 }  // namespace pixelcloth::apps

@@ -61,14 +61,43 @@ Pose poseFromJson(const nlohmann::json& json, const std::string& context) {
   return Pose::fromVector(vector, context);
 }
 
-Pose readPose(const std::filesystem::path& path, BeyondLimits beyondLimits) {
-  const Pose pose = poseFromJson(readJson(path), path.string());
+namespace {
+/// `pose` within the joint limits: as it is, clamped, or refused naming `context`.
+Pose withinLimits(const Pose& pose, BeyondLimits beyondLimits, const std::string& context) {
   const std::string beyond = pose.limitViolation();
   if (beyond.empty()) return pose;
-  PIXELCLOTH_CHECK(beyondLimits == BeyondLimits::Clamp, path.string() << ": " << beyond << "; --clamp-to-limits clamps every angle into its "
-                                                                   "limits instead");
-  PIXELCLOTH_WARN(path.string() << ": " << beyond << "; clamped into the limits (--clamp-to-limits)");
+  PIXELCLOTH_CHECK(beyondLimits == BeyondLimits::Clamp,
+                   context << ": " << beyond << "; --clamp-to-limits clamps every angle into its limits instead");
+  PIXELCLOTH_WARN(context << ": " << beyond << "; clamped into the limits (--clamp-to-limits)");
   return pose.clampedToLimits();
+}
+}  // namespace
+
+Pose readPose(const std::filesystem::path& path, BeyondLimits beyondLimits) {
+  const nlohmann::json json = readJson(path);
+  if (json.is_object() && json.contains("poses") && !json.contains("pose") && !json.contains("joints")) {
+    const nlohmann::json& list = json["poses"];
+    PIXELCLOTH_CHECK(list.is_array() && list.size() == 1,
+                     path.string() << ": holds " << (list.is_array() ? list.size() : 0)
+                                   << " poses where one is expected (`pixelcloth pose --pose` takes them all)");
+    return withinLimits(poseFromJson(list[0], path.string() + ": pose 0"), beyondLimits, path.string() + ": pose 0");
+  }
+  return withinLimits(poseFromJson(json, path.string()), beyondLimits, path.string());
+}
+
+std::vector<Pose> readPoses(const std::filesystem::path& path, BeyondLimits beyondLimits) {
+  const nlohmann::json json = readJson(path);
+  const nlohmann::json* list = &json;
+  if (json.is_object() && json.contains("poses") && !json.contains("pose") && !json.contains("joints"))
+    list = &json["poses"];
+  if (!list->is_array()) return {withinLimits(poseFromJson(json, path.string()), beyondLimits, path.string())};
+  PIXELCLOTH_CHECK(!list->empty(), path.string() << ": an empty list of poses");
+  std::vector<Pose> poses;
+  for (size_t i = 0; i < list->size(); ++i) {
+    const std::string context = path.string() + ": pose " + std::to_string(i);
+    poses.push_back(withinLimits(poseFromJson((*list)[i], context), beyondLimits, context));
+  }
+  return poses;
 }
 
 nlohmann::json poseToJson(const Pose& pose) {

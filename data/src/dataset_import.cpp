@@ -48,10 +48,18 @@ bool naturalLess(const std::string& a, const std::string& b) {
   return a.size() - i < b.size() - j || (a.size() - i == b.size() - j && a < b);
 }
 
-/// A pose vector of `poseSize` floats checked to be rotations (the rest of the 90 at identity).
-Eigen::VectorXf checkedPose(const Eigen::VectorXf& values, int poseSize, const std::string& context) {
-  body::Pose::fromLeading(values, context);
-  return values.head(poseSize);
+/// A pose vector of `poseSize` floats checked to be rotations (the rest of the 90 at identity) within the joint limits:
+/// beyond them refused naming `context`, or clamped (and counted in `clamped`).
+Eigen::VectorXf checkedPose(const Eigen::VectorXf& values, int poseSize, const std::string& context,
+                            body::BeyondLimits beyondLimits, int& clamped) {
+  const body::Pose pose =
+      body::Pose::fromLeading(values.head(std::min<Eigen::Index>(values.size(), poseSize)), context);
+  const std::string beyond = pose.limitViolation();
+  if (beyond.empty()) return values.head(poseSize);
+  PIXELCLOTH_CHECK(beyondLimits == body::BeyondLimits::Clamp,
+                   context << ": " << beyond << "; --clamp-to-limits clamps every pose into the limits");
+  ++clamped;
+  return pose.clampedToLimits().toVector().head(poseSize);
 }
 
 std::string trim(const std::string& s) {
@@ -79,7 +87,8 @@ std::vector<fs::path> objSequence(const fs::path& folder) {
   return files;
 }
 
-std::vector<Eigen::VectorXf> readPoseSequence(const fs::path& path, int poseSize) {
+std::vector<Eigen::VectorXf> readPoseSequence(const fs::path& path, int poseSize, body::BeyondLimits beyondLimits) {
+  int clamped = 0;
   PIXELCLOTH_CHECK(
       poseSize == body::kPoseSize || poseSize == body::kNecktiePoseSize,
       "poses: pose size " << poseSize << ", expected " << body::kPoseSize << " or " << body::kNecktiePoseSize);
@@ -109,12 +118,12 @@ std::vector<Eigen::VectorXf> readPoseSequence(const fs::path& path, int poseSize
                            context << ": entry " << k << " is " << entry[k].dump() << ", expected a number");
           values[k] = entry[k].get<float>();
         }
-        poses.push_back(checkedPose(values, poseSize, context));
+        poses.push_back(checkedPose(values, poseSize, context, beyondLimits, clamped));
       } else {
         PIXELCLOTH_CHECK(entry.is_object(), context << ": expected a pose object or a list of " << poseSize
                                                     << " numbers, found " << entry.type_name());
         const Eigen::VectorXf values = body::poseFromJson(entry, context).toVector();
-        poses.push_back(checkedPose(values, poseSize, context));
+        poses.push_back(checkedPose(values, poseSize, context, beyondLimits, clamped));
       }
     }
   } else {
@@ -145,10 +154,13 @@ std::vector<Eigen::VectorXf> readPoseSequence(const fs::path& path, int poseSize
       PIXELCLOTH_CHECK(
           values.size() == static_cast<size_t>(poseSize) || values.size() == static_cast<size_t>(body::kPoseSize),
           context << ": " << values.size() << " columns, expected " << poseSize << alsoFull);
-      poses.push_back(checkedPose(Eigen::Map<const Eigen::VectorXf>(values.data(), values.size()), poseSize, context));
+      poses.push_back(checkedPose(Eigen::Map<const Eigen::VectorXf>(values.data(), values.size()), poseSize, context,
+                                  beyondLimits, clamped));
     }
   }
   PIXELCLOTH_CHECK(!poses.empty(), file << ": no poses");
+  if (clamped > 0)
+    PIXELCLOTH_WARN(file << ": " << clamped << " of " << poses.size() << " poses clamped into the joint limits");
   return poses;
 }
 
@@ -181,7 +193,7 @@ DatasetSettings importDataset(const std::vector<fs::path>& objs, const fs::path&
   settings.source = "imported";
   settings.generator = {{"objs", objs.size() == 1 ? objs.front().string() : objs.front().parent_path().string()},
                         {"poses", posesFile.string()}};
-  const std::vector<Eigen::VectorXf> poses = readPoseSequence(posesFile, settings.poseSize);
+  const std::vector<Eigen::VectorXf> poses = readPoseSequence(posesFile, settings.poseSize, options.beyondLimits);
   PIXELCLOTH_CHECK(poses.size() == objs.size(), posesFile.string() << ": " << poses.size() << " poses for "
                                                                    << objs.size() << " OBJ files; expected one pose "
                                                                    << "per frame");

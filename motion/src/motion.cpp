@@ -78,8 +78,31 @@ int boneEnd(const Clip& clip, const JointMap& map, const std::string& ours, int 
   return children.empty() ? -1 : children.front();
 }
 
+/// Upper arms of a clip's rest pose within this angle of ours count as resting alike (a T-pose either way).
+constexpr double kArmRestToleranceDegrees = 10.0;
+
 /// How far beyond a joint limit a retargeted angle may land and still count as within (see retarget()).
 constexpr double kRetargetSlackDegrees = 1.0;
+
+/// `rotation`, or the axis permutation (a rotation taking each axis onto an axis) within 10 degrees of it.
+Eigen::Matrix3d snappedToAxes(const Eigen::Matrix3d& rotation) {
+  Eigen::Matrix3d best = rotation;
+  double bestTrace = -4;
+  const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (const auto& order : orders)
+    for (int signs = 0; signs < 8; ++signs) {
+      Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+      for (int r = 0; r < 3; ++r) P(r, order[r]) = (signs >> r) & 1 ? -1 : 1;
+      if (P.determinant() < 0) continue;
+      const double trace = (P.transpose() * rotation).trace();
+      if (trace > bestTrace) {
+        bestTrace = trace;
+        best = P;
+      }
+    }
+  const double degrees = std::acos(std::clamp((bestTrace - 1) / 2, -1.0, 1.0)) * 180 / M_PI;
+  return degrees < 10 ? best : rotation;
+}
 
 Eigen::Matrix3d orthonormalised(const Eigen::Matrix3d& r) {
   return Eigen::Quaterniond(r).normalized().toRotationMatrix();
@@ -209,31 +232,32 @@ Motion retarget(const Clip& clip, const body::Skeleton& skeleton, const JointMap
   const auto [ourFrame, ourSpine] = restFrame(
       skeleton.positions.row(ourRoot), skeleton.positions.row(skeleton.index("neck")),
       skeleton.positions.row(skeleton.index("l_arm")), skeleton.positions.row(skeleton.index("r_arm")), "skeleton");
-  const Eigen::Matrix3d A = ourFrame * clipFrame.transpose();
+  // Clips are authored in axes that are ours up to a quarter turn (Y or Z up, facing along an axis); a few degrees off
+  // such a turn is the two skeletons' differing spines and shoulders, which would tilt every joint's axis.
+  const Eigen::Matrix3d A = snappedToAxes(ourFrame * clipFrame.transpose());
 
-  // The rest poses' difference, joint by joint from the root outwards: the rotation taking our rest bone, as the
-  // parent's correction has already turned it, onto the clip's rest bone, after the parent's (identity where both rest
-  // in a T-pose; the arm's lowering for an A-pose clip, which its forearm inherits rather than bending by).
+  // The rest poses' one difference that is motion rather than anatomy: where the upper arms point (a T-pose, an
+  // A-pose, or between), when they differ by more than kArmRestToleranceDegrees. Each upper arm gets the rotation
+  // taking our rest bone onto the clip's, and the forearm inherits it. Every other joint is taken to rest as ours does,
+  // whatever its bones' directions: a clip's clavicles may rise 20 degrees at rest and its spine bend, which is its
+  // skeleton, not a pose.
   const std::array<int, 10> ourJoints = skeleton.poseJointIndices();
   std::vector<Eigen::Matrix3d> correction(skeleton.numJoints(), Eigen::Matrix3d::Identity());
   for (int k = 0; k < 10; ++k) {
     const std::string& ours = body::kPoseJoints[k];
     const int j = ourJoints[k];
-    // Our bone ends where the clip's does: at the joint that continues it, else at the skeleton's bone end.
-    const std::string& next = boneContinuation().at(ours);
-    const Eigen::RowVector3d ourEnd =
-        next.empty() ? skeleton.boneEnds.row(j) : skeleton.positions.row(skeleton.index(next));
     const int parent = skeleton.parents[j];
-    const Eigen::Matrix3d inherited = parent < 0 ? Eigen::Matrix3d::Identity() : correction[parent];
-    const Eigen::Vector3d bone = inherited * (ourEnd - skeleton.positions.row(j)).transpose();
+    correction[j] = parent < 0 ? Eigen::Matrix3d::Identity() : correction[parent];
+    if (ours != "l_arm" && ours != "r_arm") continue;
+    const std::string& next = boneContinuation().at(ours);
+    const Eigen::Vector3d bone = (skeleton.positions.row(skeleton.index(next)) - skeleton.positions.row(j)).transpose();
     const int end = boneEnd(clip, map, ours, c[ours]);
-    const Eigen::Vector3d clipBone =
-        end < 0 ? bone
-                : Eigen::Vector3d(A * (clip.restPositions.row(end) - clip.restPositions.row(c[ours])).transpose());
-    correction[j] =
-        (bone.norm() > 0 && clipBone.norm() > 0 ? Eigen::Quaterniond::FromTwoVectors(bone, clipBone).toRotationMatrix()
-                                                : Eigen::Matrix3d::Identity()) *
-        inherited;
+    if (end < 0) continue;
+    const Eigen::Vector3d clipBone = A * (clip.restPositions.row(end) - clip.restPositions.row(c[ours])).transpose();
+    // A few degrees between the arms is anatomy as well (and turning the arm by them would tilt every elbow bend).
+    if (bone.norm() > 0 && clipBone.norm() > 0 &&
+        bone.normalized().dot(clipBone.normalized()) < std::cos(kArmRestToleranceDegrees * M_PI / 180))
+      correction[j] = Eigen::Quaterniond::FromTwoVectors(bone, clipBone).toRotationMatrix();
   }
 
   Motion motion;

@@ -19,6 +19,10 @@ namespace pixelcloth::body {
 enum class BeyondLimits { Refuse, Clamp };
 Pose readPose(const std::filesystem::path& path, BeyondLimits beyondLimits = BeyondLimits::Refuse);
 
+/// Reads every pose of a file: one pose object as readPose takes, a list of them, or {"poses": [...]} as
+/// `pixelcloth pose` writes its poses.json. Each is checked as readPose checks one, its index named.
+std::vector<Pose> readPoses(const std::filesystem::path& path, BeyondLimits beyondLimits = BeyondLimits::Refuse);
+
 /// Parses the same forms from an already-read JSON value; `context` names its origin in messages.
 Pose poseFromJson(const nlohmann::json& json, const std::string& context);
 

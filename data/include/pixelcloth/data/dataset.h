@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pixelcloth/body/body.h"
+#include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/core/npy.h"
 #include "pixelcloth/data/sample.h"
 #include "pixelcloth/garment/embedding.h"
@@ -291,13 +292,16 @@ std::vector<std::filesystem::path> objSequence(const std::filesystem::path& fold
 ///    {"joints": {...}}) or plain arrays of `poseSize` numbers; or an object {"poses": that list};
 ///  - CSV (any other extension): one row of `poseSize` numbers per frame, comma separated, optionally a header row.
 /// For the necktie (36) rows of 90 numbers are accepted too (the first 36 are kept). Every pose's 3x3 blocks must be
-/// rotations. Throws `InputError` naming the file, the frame (or line) and the fault.
-std::vector<Eigen::VectorXf> readPoseSequence(const std::filesystem::path& path, int poseSize);
+/// rotations. A pose beyond the joint limits is refused, or with BeyondLimits::Clamp clamped (a warning counts them),
+/// as in every verb. Throws `InputError` naming the file, the frame (or line) and the fault.
+std::vector<Eigen::VectorXf> readPoseSequence(const std::filesystem::path& path, int poseSize,
+                                              body::BeyondLimits beyondLimits = body::BeyondLimits::Refuse);
 
 /// How importDataset describes what it imported.
 struct ImportOptions {
   nlohmann::json body = nlohmann::json::object();  ///< the body description for the manifest
   std::uint64_t seed = 0;                          ///< seeds the split
+  body::BeyondLimits beyondLimits = body::BeyondLimits::Refuse;  ///< poses beyond the joint limits
 };
 
 /// The same samples on another body (the paper's wrong-body-shape and broken-skinning experiments): `folder`'s positions

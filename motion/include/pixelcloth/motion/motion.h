@@ -64,9 +64,11 @@ struct Motion {
 };
 
 /// Retargets `clip` to `skeleton` through `map`, whatever the clip's rest pose, axes, channel order and units:
-/// - the clip's axes are aligned to ours from its rest pose (up: root to neck; left: right arm to left arm);
-/// - each joint's world rotation relative to the clip's rest and to its root is applied to our bone after the
-///   rotation taking our rest bone onto the clip's (so an A-pose rest is honoured), and our local rotations follow;
+/// - the clip's axes are aligned to ours from its rest pose (up: root to neck; left: right arm to left arm), to the
+///   nearest quarter turn when within 10 degrees of one;
+/// - each joint's world rotation relative to the clip's rest and to its root is applied to our joint; the rest poses
+///   are taken to agree except where the upper arms point (an A-pose clip's arms are turned onto ours first, the
+///   forearms with them); our local rotations follow;
 /// - a frame beyond the joint limits is refused naming the frame and joint, or, with BeyondLimits::Clamp, clamped
 ///   and counted. An angle less than 1 degree beyond is the two skeletons' differing bones, not the motion: it is
 ///   clamped and not counted. Every pose returned is within the limits.

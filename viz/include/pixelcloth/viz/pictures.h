@@ -52,6 +52,10 @@ core::RgbImage renderClothImage(const patches::ClothImage& image, const PreviewO
 void writePosedBodies(const std::filesystem::path& folder, const body::Body& body, const std::vector<body::Pose>& poses,
                       const nlohmann::json& info = nlohmann::json::object());
 
+/// The body in `count` frames of a pose sequence spread evenly from the first to the last, side by side on one scale,
+/// each labelled with its frame and time at `fps` (a motion clip's strip).
+core::RgbImage renderPoseStrip(const body::Body& body, const std::vector<body::Pose>& poses, double fps, int count = 8);
+
 /// Per-vertex values (#V, e.g. errors in metres) drawn in pattern space: each layout in its own `size` x `size`
 /// cloth-image frame, faces coloured by the mean of their vertices on a dark-blue-to-yellow ramp from 0 to `maxValue`
 /// (`blueToRed`: blue, white, red), under a title row. Layouts side by side.

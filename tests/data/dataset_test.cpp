@@ -547,6 +547,21 @@ TEST(DatasetImport, ReadsPoseFilesInEveryForm) {
   pc::writeJson(dir / "twos.json", nlohmann::json::array({std::vector<float>(90, 2.0f)}));
   EXPECT_NE(inputErrorOf([&] { pd::readPoseSequence(dir / "twos.json", 90); }).find("twos.json: pose 0"),
             std::string::npos);
+
+  // A pose beyond the joint limits (a forearm bent about z, as motion capture has) is refused, or clamped when asked.
+  nlohmann::json beyond = nlohmann::json::array();
+  beyond.push_back(std::vector<float>(a.data(), a.data() + 90));
+  beyond.push_back({{"joints", {{"l_forearm", {{"euler_deg", {0, -30, 29}}}}}}});
+  pc::writeJson(dir / "beyond.json", beyond);
+  const std::string refused = inputErrorOf([&] { pd::readPoseSequence(dir / "beyond.json", 90); });
+  EXPECT_NE(refused.find("beyond.json: pose 1: joint 'l_forearm': z = 29"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("--clamp-to-limits"), std::string::npos) << refused;
+  poses = pd::readPoseSequence(dir / "beyond.json", 90, pb::BeyondLimits::Clamp);
+  ASSERT_EQ(poses.size(), 2u);
+  EXPECT_EQ(poses[0], a);
+  const Eigen::Matrix<double, 10, 3> clamped = pb::Pose::fromVector(poses[1]).toEulerDegrees();
+  EXPECT_NEAR(clamped(6, 2), 0, 1e-4);
+  EXPECT_NEAR(clamped(6, 1), -30, 1e-3);
 }
 
 TEST(DatasetImport, ImportsAnObjSequenceWithPoses) {

@@ -1,6 +1,7 @@
 // pixelcloth predict: garments from a trained model, for a pose (and its markers) or for dataset samples.
 #include "pixelcloth/learn/predict.h"
 
+#include <chrono>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -9,13 +10,17 @@
 #include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/learn/training_data.h"
+#include "pixelcloth/motion/motion.h"
+#include "pixelcloth/motion/sequence.h"
 #include "pixelcloth/patches/cloth_image.h"
 #include "pixelcloth/stitch/evaluate.h"
+#include "pixelcloth/viz/motion_pictures.h"
 #include "pixelcloth/viz/pictures.h"
 #include "prediction_inputs.h"
 #include "verbs.h"
@@ -26,7 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct PredictArgs {
-  std::string model, pose, markers, dataset, base, out, engine = "onednn";
+  std::string model, pose, motion, markers, dataset, base, out, engine = "onednn";
   std::vector<int> samples;
   StitchArgs stitch;
 };
@@ -43,7 +48,71 @@ void writeGarment(const fs::path& out, const std::string& name, const garment::G
   core::writePng(out / (name + ".png"), viz::renderClothImage(image));
 }
 
+/// The motion form: every frame of a motion folder predicted, as OBJ frames, PC2 caches of garment and body, the
+/// temporal measures and pictures.
+void runPredictMotion(const PredictArgs& args) {
+  PIXELCLOTH_CHECK(args.pose.empty() && args.samples.empty() && args.markers.empty() && args.base.empty(),
+                   "predict --motion: not with --pose, --samples, --markers or --base");
+  PIXELCLOTH_CHECK(args.stitch.modes.find(',') == std::string::npos,
+                   "predict --stitch " << args.stitch.modes << ": one mode (evaluate compares several)");
+  core::checkOutputFolder(args.out);
+  const motion::Motion clip = motion::readMotion(args.motion, poseLimits());
+  const learn::Engine engine = learn::engineFromName(args.engine, "--engine");
+  const learn::PredictionInputs inputs =
+      learn::posesPredictionInputs(args.model, clip.poses, args.motion, datasetFolder(args.dataset), engine);
+  PIXELCLOTH_CHECK(!inputs.model->residual(), "predict --motion: the model in "
+                                                  << args.model
+                                                  << " is a residual model, which needs the garment's markers in "
+                                                     "every frame: use reconstruct --markers-sequence");
+  const std::vector<stitch::Stitcher> stitchers = makeStitchers(args.stitch, inputs);
+  std::vector<int> rows(clip.frames());
+  for (int f = 0; f < clip.frames(); ++f) rows[f] = f;
+  const auto start = std::chrono::steady_clock::now();
+  const stitch::RowPredictions predicted = stitch::predictRows(*inputs.model, inputs.data, rows, &stitchers.front());
+  const double predictSeconds = core::secondsSince(start);
+
+  // The body of every frame, posed as the model sees it (its pose size), and both moved as the clip's root moves.
+  const body::Body body = data::loadDatasetBody(datasetFolder(inputs.data.folder.string()));
+  std::vector<Eigen::MatrixX3d> bodyFrames;
+  for (int f = 0; f < clip.frames(); ++f)
+    bodyFrames.push_back(body.posedVertices(body::Pose::fromLeading(inputs.data.inputs.row(f).transpose())));
+  const motion::TemporalMetrics metrics =
+      motion::temporalMetrics(predicted.positions, bodyFrames, body.mesh.F, clip.fps);
+  const Eigen::Vector3d root = body.skeleton.positions.row(body.skeleton.index("root")).transpose();
+  const std::vector<Eigen::MatrixX3d> garmentWorld = motion::withRootMotion(predicted.positions, clip, root);
+  const std::vector<Eigen::MatrixX3d> bodyWorld = motion::withRootMotion(bodyFrames, clip, root);
+
+  const fs::path out = args.out;
+  core::ensureOutputFolder(out);
+  motion::writeObjSequence(out / "frames", "garment", inputs.data.garment.mesh, garmentWorld);
+  core::Mesh garmentBase = inputs.data.garment.mesh, bodyBase = body.mesh;
+  garmentBase.V = garmentWorld.front();
+  bodyBase.V = bodyWorld.front();
+  core::writeMesh(out / "garment.obj", garmentBase);
+  core::writeMesh(out / "body.obj", bodyBase);
+  motion::writePc2(out / "garment.pc2", garmentWorld);
+  motion::writePc2(out / "body.pc2", bodyWorld);
+  core::writePng(out / "strip.png", viz::renderGarmentStrip(body.mesh.F, bodyFrames, inputs.data.garment.mesh,
+                                                            predicted.positions, clip.fps));
+  core::writePng(out / "temporal.png", viz::renderTemporalMetrics(metrics));
+  nlohmann::json json = metrics.toJson();
+  json["model"] = args.model;
+  json["motion"] = args.motion;
+  json["stitch"] = args.stitch.modes;
+  json["engine"] = args.engine;
+  json["prediction_ms_per_frame"] = 1000 * predictSeconds / clip.frames();
+  core::writeJson(out / "metrics.json", json);
+  std::cout << std::fixed << std::setprecision(3) << "predict: " << clip.frames() << " frames at " << clip.fps
+            << " fps in " << predictSeconds << " s (" << 1000 * predictSeconds / clip.frames()
+            << " ms a frame); garment jitter " << metrics.meanGarmentJitterCm() << " cm (body "
+            << metrics.meanBodyJitterCm() << " cm); garment inside the body in " << metrics.framesWithInside()
+            << " frames -> " << out.string()
+            << "/{frames/garment_NNNN.obj, garment.obj, body.obj, garment.pc2, body.pc2, strip.png, temporal.png, "
+               "metrics.json}\n";
+}
+
 void runPredict(const PredictArgs& args) {
+  if (!args.motion.empty()) return runPredictMotion(args);
   PIXELCLOTH_CHECK(args.pose.empty() != args.samples.empty(),
                    "predict: give --pose P.json, or --dataset D with --samples i,j (not both)");
   PIXELCLOTH_CHECK(args.samples.empty() || !args.dataset.empty(), "predict: --samples needs --dataset");
@@ -88,6 +157,9 @@ void registerPredict(CLI::App& app) {
       "predict", "Garments from a trained model (pixelcloth train), for a pose or for dataset samples: OBJ, EXR, PNG");
   verb->add_option("--model", args->model, "Model folder (one network, or patch_NN/ folders)")->required();
   verb->add_option("--pose", args->pose, "Pose file (pixelcloth pose); the body and garment are the model's dataset's");
+  verb->add_option("--motion", args->motion,
+                   "Motion folder (pixelcloth motion import): every frame, as an OBJ sequence, PC2 caches of garment "
+                   "and body, strip.png, temporal.png and metrics.json (jitter, garment inside the body)");
   verb->add_option("--markers", args->markers, "With --pose, for a residual model: the garment's markers (M.json)");
   verb->add_option("--dataset", args->dataset,
                    "Dataset folder: with --samples, the samples to predict; with --pose, the body and garment "

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/progress.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/embedding.h"
 
@@ -33,7 +34,13 @@ PredictionInputs datasetPredictionInputs(const fs::path& modelFolder, const data
 }
 
 PredictionInputs posePredictionInputs(const fs::path& modelFolder, const body::Pose& pose, const std::string& poseName,
-                                      const data::DatasetFolder& datasetArg, Engine engine) {
+                                      const data::DatasetFolder& dataset, Engine engine) {
+  return posesPredictionInputs(modelFolder, {pose}, poseName, dataset, engine);
+}
+
+PredictionInputs posesPredictionInputs(const fs::path& modelFolder, const std::vector<body::Pose>& poses,
+                                       const std::string& name, const data::DatasetFolder& datasetArg, Engine engine) {
+  PIXELCLOTH_CHECK(!poses.empty(), name << ": no poses");
   const data::DatasetFolder dataset =
       datasetArg.path.empty() ? datasetArg.with(trainingDatasetOf(modelFolder)) : datasetArg;
   const data::DatasetInfo info = data::readDatasetInfo(dataset);
@@ -45,21 +52,28 @@ PredictionInputs posePredictionInputs(const fs::path& modelFolder, const body::P
   data.garment = data::datasetGarment(info);
   data.space = out.model->space();
   data.poseSize = out.model->poseSize();
-  const Eigen::VectorXf full = pose.toVector();
-  const Eigen::VectorXf vector = full.head(data.poseSize);
-  const int rest = body::kPoseSize - data.poseSize;
-  PIXELCLOTH_CHECK(rest == 0 || full.tail(rest).isApprox(body::Pose::fromLeading(vector).toVector().tail(rest)),
-                   poseName << ": the " << data.garment.name << " model takes the first " << data.poseSize
-                            << " pose floats; this pose also turns later joints");
   const body::Body body = data::loadDatasetBody(dataset);
   const garment::Embedding embedding = data::loadDatasetEmbedding(dataset, body.mesh.F.rows());
-  data.frames.push_back(
-      garment::embeddedFrames(body.posedVertices(body::Pose::fromLeading(vector)), body.mesh.F, embedding));
   const int V = data.garment.mesh.numVertices();
-  data.truth.push_back(Eigen::MatrixXf::Constant(V, 3, std::nanf("")));
-  data.values.push_back(Eigen::MatrixXf::Zero(V, 3));
-  data.inputs = vector.transpose();
-  data.test = {0};
+  const int rest = body::kPoseSize - data.poseSize;
+  data.inputs.resize(static_cast<Eigen::Index>(poses.size()), data.poseSize);
+  core::Progress progress("posed frames", static_cast<std::int64_t>(poses.size()));
+  for (size_t k = 0; k < poses.size(); ++k) {
+    const Eigen::VectorXf full = poses[k].toVector();
+    const Eigen::VectorXf vector = full.head(data.poseSize);
+    PIXELCLOTH_CHECK(rest == 0 || full.tail(rest).isApprox(body::Pose::fromLeading(vector).toVector().tail(rest)),
+                     name << (poses.size() > 1 ? ": frame " + std::to_string(k) : std::string()) << ": the "
+                          << data.garment.name << " model takes the first " << data.poseSize
+                          << " pose floats; this pose also turns later joints");
+    data.frames.push_back(
+        garment::embeddedFrames(body.posedVertices(body::Pose::fromLeading(vector)), body.mesh.F, embedding));
+    data.truth.push_back(Eigen::MatrixXf::Constant(V, 3, std::nanf("")));
+    data.values.push_back(Eigen::MatrixXf::Zero(V, 3));
+    data.inputs.row(static_cast<Eigen::Index>(k)) = vector.transpose();
+    data.test.push_back(static_cast<int>(k));
+    progress.advance();
+  }
+  progress.finish();
   return out;
 }
 

@@ -12,6 +12,7 @@
 #include "pixelcloth/core/mesh_io.h"
 #include "support/cli.h"
 #include "support/fixtures.h"
+#include "support/python.h"
 #include "support/test_util.h"
 
 namespace {
@@ -244,3 +245,60 @@ TEST_F(LearnCli, BadInputIsRefusedNamingTheFile) {
 }
 
 }  // namespace
+
+// predict --motion: a clip imported by motion import, every frame predicted by the patch model; the PC2 caches read
+// back by numpy and against the OBJ frames; the temporal measures and pictures written; a damaged motion refused.
+TEST_F(LearnCli, AMotionClipBecomesAnAnimatedGarment) {
+  const fs::path model = work_ / "patch", motion = work_ / "motion", out = work_ / "animated";
+  train({"--model", "patch", "--width", "0.03125", "--epochs", "1", "--out", model.string()});
+  const CliRun imported =
+      runPixelcloth({"--clamp-to-limits", "motion", "import",
+                     pixelcloth::testing::asset("motion/cmu_style.bvh").string(), "--out", motion.string()});
+  ASSERT_EQ(imported.status, 0) << imported;
+  const CliRun run =
+      runPixelcloth({"predict", "--model", model.string(), "--motion", motion.string(), "--out", out.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_NE(run.out.find("4 frames at 120"), std::string::npos) << run;
+  for (const char* name : {"frames/garment_0000.obj", "frames/garment_0003.obj", "garment.obj", "body.obj",
+                           "garment.pc2", "body.pc2", "strip.png", "temporal.png", "metrics.json"})
+    EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
+  EXPECT_FALSE(fs::exists(out / "frames" / "garment_0004.obj"));
+  const nlohmann::json metrics = nlohmann::json::parse(readFile(out / "metrics.json"));
+  EXPECT_EQ(metrics["frames"], 4);
+  EXPECT_GT(metrics["garment_jitter_cm"]["mean"].get<double>(), 0);
+  EXPECT_GT(metrics["body_jitter_cm"]["mean"].get<double>(), 0);
+  EXPECT_TRUE(metrics["garment_jitter_cm"]["per_frame"][0].is_null());  // no neighbours before the first frame
+  EXPECT_EQ(metrics["inside_body"]["vertices_per_frame"].size(), 4u);
+
+  // numpy reads the caches as Blender's Mesh Cache modifier would: header, then frames x points x 3 float32.
+  const pixelcloth::core::Mesh frame2 = pixelcloth::core::readMesh(out / "frames" / "garment_0002.obj");
+  if (!pixelcloth::testing::numpyPython().empty()) {
+    const std::string checked = pixelcloth::testing::runPython(
+        "import sys, numpy as np\n"
+        "def pc2(path):\n"
+        "    raw = open(path, 'rb').read()\n"
+        "    assert raw[:12] == b'POINTCACHE2\\0', raw[:12]\n"
+        "    version, points = np.frombuffer(raw[12:20], '<i4')\n"
+        "    start, rate = np.frombuffer(raw[20:28], '<f4')\n"
+        "    samples = np.frombuffer(raw[28:32], '<i4')[0]\n"
+        "    assert version == 1 and rate == 1 and start == 0\n"
+        "    return np.frombuffer(raw[32:], '<f4').reshape(samples, points, 3)\n"
+        "g = pc2(sys.argv[1] + '/garment.pc2'); b = pc2(sys.argv[1] + '/body.pc2')\n"
+        "v = np.array([[float(x) for x in l.split()[1:4]] for l in open(sys.argv[1] + '/frames/garment_0002.obj')\n"
+        "              if l.startswith('v ')])\n"
+        "assert g.shape == (4, len(v), 3), g.shape\n"
+        "assert np.abs(g[2] - v).max() < 1e-5, np.abs(g[2] - v).max()\n"
+        "assert b.shape[0] == 4 and np.isfinite(b).all()\n"
+        "print('ok', g.shape[1])\n",
+        out);
+    EXPECT_EQ(checked, "ok " + std::to_string(frame2.numVertices()) + "\n");
+  }
+
+  // A motion whose poses.npy lost its tail is refused naming it, and nothing is written.
+  const std::string poses = readFile(motion / "poses.npy");
+  writeFile(motion / "poses.npy", poses.substr(0, poses.size() - 100));
+  EXPECT_TRUE(refused(runPixelcloth({"predict", "--model", model.string(), "--motion", motion.string(), "--out",
+                                     (work_ / "none").string()}),
+                      {"poses.npy"}));
+  EXPECT_FALSE(fs::exists(work_ / "none"));
+}

@@ -15,6 +15,7 @@
 #include "pixelcloth/body/body.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/motion/sequence.h"
 #include "support/test_util.h"
 
 namespace fs = std::filesystem;
@@ -365,4 +366,51 @@ TEST(Motion, BadClipsAreRefusedNamingTheFile) {
   pixelcloth::core::writeTextAtomically(dir / "map.json", map.dump());
   EXPECT_NE(inputErrorOf([&] { pm::readJointMap(dir / "map.json", renamedClip); }).find("unknown joint 'l_hand'"),
             std::string::npos);
+}
+
+TEST(Sequence, PointCachesReadBackAndDamagedOnesAreRefused) {
+  const fs::path dir = pixelcloth::testing::freshDir("pc2");
+  std::vector<Eigen::MatrixX3d> frames;
+  for (int f = 0; f < 3; ++f) frames.push_back(Eigen::MatrixX3d::Random(5, 3) + Eigen::MatrixX3d::Constant(5, 3, f));
+  pm::writePc2(dir / "a.pc2", frames);
+  const std::vector<Eigen::MatrixX3f> back = pm::readPc2(dir / "a.pc2");
+  ASSERT_EQ(back.size(), 3u);
+  for (int f = 0; f < 3; ++f) EXPECT_LT((back[f].cast<double>() - frames[f]).cwiseAbs().maxCoeff(), 1e-6);
+  const std::string bytes = pixelcloth::core::readTextFile(dir / "a.pc2");
+  pixelcloth::core::writeTextAtomically(dir / "cut.pc2", bytes.substr(0, bytes.size() - 7));
+  EXPECT_NE(inputErrorOf([&] { pm::readPc2(dir / "cut.pc2"); }).find("cut.pc2"), std::string::npos);
+  pixelcloth::core::writeTextAtomically(dir / "other.pc2", "POINTCACHE3" + bytes.substr(11));
+  EXPECT_NE(inputErrorOf([&] { pm::readPc2(dir / "other.pc2"); }).find("not a PC2 point cache"), std::string::npos);
+  frames[1](2, 1) = std::nan("");
+  EXPECT_NE(inputErrorOf([&] { pm::writePc2(dir / "nan.pc2", frames); }).find("frame 1"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "nan.pc2"));
+}
+
+TEST(Sequence, JitterIsTheSecondDifferenceAndInsideTheBodyIsCounted) {
+  // The body: an octahedron of radius 1 at the origin, still. The garment: one point gliding outside at constant
+  // speed (no jitter), one shaking inside by +-1 mm along x.
+  Eigen::MatrixX3d octahedron(6, 3);
+  octahedron << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
+  Eigen::MatrixX3i faces(8, 3);
+  faces << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5;
+  std::vector<Eigen::MatrixX3d> garment, body;
+  for (int f = 0; f < 5; ++f) {
+    Eigen::MatrixX3d g(2, 3);
+    g << 2 + 0.01 * f, 0, 0, (f % 2 ? 0.001 : -0.001), 0, 0.5;
+    garment.push_back(g);
+    body.push_back(octahedron);
+  }
+  const pm::TemporalMetrics m = pm::temporalMetrics(garment, body, faces, 30);
+  ASSERT_EQ(m.insideVertices.size(), 5u);
+  EXPECT_TRUE(std::isnan(m.garmentJitterCm.front()) && std::isnan(m.garmentJitterCm.back()));
+  // |x(t+1) - 2 x(t) + x(t-1)| = 4 mm for the shaking point, 0 for the gliding one: a mean of 0.2 cm.
+  for (int f = 1; f < 4; ++f) EXPECT_NEAR(m.garmentJitterCm[f], 0.2, 1e-9);
+  EXPECT_NEAR(m.meanBodyJitterCm(), 0, 1e-12);
+  for (int f = 0; f < 5; ++f) {
+    EXPECT_EQ(m.insideVertices[f], 1);
+    // The inside point (+-0.001, 0, 0.5) is nearest the face x + y + z = 1 (or -x + y + z = 1): (1 - 0.501) / sqrt(3).
+    EXPECT_NEAR(m.maxDepthCm[f], 100 * (1 - 0.5 - 0.001) / std::sqrt(3.0), 1e-6);
+  }
+  EXPECT_EQ(m.framesWithInside(), 5);
+  EXPECT_EQ(m.toJson()["inside_body"]["frames_with_any"], 5);
 }

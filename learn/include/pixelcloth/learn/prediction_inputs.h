@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/learn/predict.h"
@@ -31,6 +32,11 @@ PredictionInputs datasetPredictionInputs(const std::filesystem::path& modelFolde
 /// the model's pose size.
 PredictionInputs posePredictionInputs(const std::filesystem::path& modelFolder, const body::Pose& pose,
                                       const std::string& poseName, const data::DatasetFolder& dataset, Engine engine);
+
+/// One row per pose (a motion's frames, in order), as posePredictionInputs makes one; `name` names the poses' source
+/// in messages. Progress on stderr.
+PredictionInputs posesPredictionInputs(const std::filesystem::path& modelFolder, const std::vector<body::Pose>& poses,
+                                       const std::string& name, const data::DatasetFolder& dataset, Engine engine);
 
 /// Completes the one row of a residual model's posePredictionInputs: the base offsets (#V x 3, du dv dn in the posed
 /// body's frames) rebuilt from the garment's markers and their 3M marker features (recon::baseOfCapture).

@@ -75,6 +75,11 @@ struct Motion {
 Motion retarget(const Clip& clip, const body::Skeleton& skeleton, const JointMap& map,
                 body::BeyondLimits beyondLimits = body::BeyondLimits::Refuse);
 
+/// `frames` (positions in the fixed-root frame the networks predict in, one matrix per frame of `motion`) moved by the
+/// clip's root motion: turned about `rootPosition` (our skeleton's root at rest) and displaced, as the clip moves.
+std::vector<Eigen::MatrixX3d> withRootMotion(const std::vector<Eigen::MatrixX3d>& frames, const Motion& motion,
+                                             const Eigen::Vector3d& rootPosition);
+
 /// Writes motion.json and poses.npy into `folder` (poses.npy first, motion.json last, each atomically).
 void writeMotion(const std::filesystem::path& folder, const Motion& motion);
 /// Reads a motion folder; InputError naming the file for a missing or malformed motion.json or poses.npy, a frame

@@ -1,0 +1,67 @@
+#include "pixelcloth/viz/motion_pictures.h"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "pixelcloth/core/error.h"
+#include "pixelcloth/viz/draw.h"
+#include "pixelcloth/viz/line_chart.h"
+#include "pixelcloth/viz/previews.h"
+#include "pixelcloth/viz/render.h"
+
+namespace pixelcloth::viz {
+
+core::RgbImage renderGarmentStrip(const Eigen::MatrixX3i& bodyFaces, const std::vector<Eigen::MatrixX3d>& body,
+                                  const core::Mesh& garment, const std::vector<Eigen::MatrixX3d>& garmentFrames,
+                                  double fps, int count) {
+  PIXELCLOTH_CHECK(!body.empty() && body.size() == garmentFrames.size() && count >= 1,
+                   "garment strip: " << body.size() << " body frames, " << garmentFrames.size() << " garment frames");
+  View view;
+  view.width = 240;
+  view.height = 320;
+  view.azimuthDegrees = 20;
+  view.elevationDegrees = 10;
+  for (const Eigen::MatrixX3d& frame : body)
+    for (Eigen::Index i = 0; i < frame.rows(); i += 7) view.bounds.extend(frame.row(i).transpose().eval());
+  const int n = std::min<int>(count, static_cast<int>(body.size()));
+  std::vector<core::RgbImage> pictures;
+  for (int k = 0; k < n; ++k) {
+    const int f = n == 1 ? 0 : static_cast<int>(std::lround(k * (body.size() - 1.0) / (n - 1)));
+    const RenderMesh skin{body[f], bodyFaces, {}, {}, {0.87, 0.76, 0.66}};
+    const RenderMesh cloth{garmentFrames[f], garment.F, {}, {}, {0.25, 0.45, 0.75}};
+    core::RgbImage picture = renderMeshes({skin, cloth}, view);
+    std::ostringstream label;
+    label << "frame " << f << "  " << std::fixed << std::setprecision(2) << f / fps << " s";
+    drawText(picture, {8, 8}, label.str(), core::Color{40, 40, 40}, 1);
+    pictures.push_back(std::move(picture));
+  }
+  return contactSheet(pictures, n);
+}
+
+core::RgbImage renderTemporalMetrics(const motion::TemporalMetrics& metrics) {
+  const int frames = static_cast<int>(metrics.insideVertices.size());
+  PIXELCLOTH_CHECK(frames > 0, "temporal metrics: no frames");
+  ChartSeries garment{"garment", {}, {}}, body{"body", {}, {}}, inside{"garment vertices inside the body", {}, {}};
+  for (int f = 0; f < frames; ++f) {
+    const double t = f / metrics.fps;
+    if (std::isfinite(metrics.garmentJitterCm[f])) {
+      garment.x.push_back(t);
+      garment.y.push_back(metrics.garmentJitterCm[f]);
+      body.x.push_back(t);
+      body.y.push_back(metrics.bodyJitterCm[f]);
+    }
+    inside.x.push_back(t);
+    inside.y.push_back(metrics.insideVertices[f]);
+  }
+  std::vector<core::RgbImage> charts;
+  if (!garment.x.empty()) {
+    LineChart jitter{"jitter |x(t+1) - 2x(t) + x(t-1)|", "time, s", "cm, mean over vertices", {garment, body}};
+    charts.push_back(renderLineChart(jitter, 640, 320));
+  }
+  LineChart depth{"garment inside the body", "time, s", "vertices", {inside}};
+  charts.push_back(renderLineChart(depth, 640, 320));
+  return contactSheet(charts, static_cast<int>(charts.size()));
+}
+
+}  // namespace pixelcloth::viz

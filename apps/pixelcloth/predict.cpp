@@ -16,6 +16,7 @@
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/learn/training_data.h"
+#include "pixelcloth/motion/glb.h"
 #include "pixelcloth/motion/motion.h"
 #include "pixelcloth/motion/sequence.h"
 #include "pixelcloth/patches/cloth_image.h"
@@ -92,6 +93,16 @@ void runPredictMotion(const PredictArgs& args) {
   core::writeMesh(out / "body.obj", bodyBase);
   motion::writePc2(out / "garment.pc2", garmentWorld);
   motion::writePc2(out / "body.pc2", bodyWorld);
+  motion::AnimatedScene scene;
+  scene.body = &body;
+  for (int f = 0; f < clip.frames(); ++f)
+    scene.poses.push_back(body::Pose::fromLeading(inputs.data.inputs.row(f).transpose()));
+  scene.rootRotations = clip.rootRotations;
+  scene.rootTranslations = clip.rootTranslations;
+  scene.garment = &inputs.data.garment.mesh;
+  scene.garmentFrames = garmentWorld;
+  scene.fps = clip.fps;
+  motion::writeAnimatedGlb(out / "animation.glb", scene);
   core::writePng(out / "strip.png", viz::renderGarmentStrip(body.mesh.F, bodyFrames, inputs.data.garment.mesh,
                                                             predicted.positions, clip.fps));
   core::writePng(out / "temporal.png", viz::renderTemporalMetrics(metrics));
@@ -107,8 +118,8 @@ void runPredictMotion(const PredictArgs& args) {
             << " ms a frame); garment jitter " << metrics.meanGarmentJitterCm() << " cm (body "
             << metrics.meanBodyJitterCm() << " cm); garment inside the body in " << metrics.framesWithInside()
             << " frames -> " << out.string()
-            << "/{frames/garment_NNNN.obj, garment.obj, body.obj, garment.pc2, body.pc2, strip.png, temporal.png, "
-               "metrics.json}\n";
+            << "/{animation.glb, frames/garment_NNNN.obj, garment.obj, body.obj, garment.pc2, body.pc2, strip.png, "
+               "temporal.png, metrics.json}\n";
 }
 
 void runPredict(const PredictArgs& args) {
@@ -158,8 +169,9 @@ void registerPredict(CLI::App& app) {
   verb->add_option("--model", args->model, "Model folder (one network, or patch_NN/ folders)")->required();
   verb->add_option("--pose", args->pose, "Pose file (pixelcloth pose); the body and garment are the model's dataset's");
   verb->add_option("--motion", args->motion,
-                   "Motion folder (pixelcloth motion import): every frame, as an OBJ sequence, PC2 caches of garment "
-                   "and body, strip.png, temporal.png and metrics.json (jitter, garment inside the body)");
+                   "Motion folder (pixelcloth motion import): every frame, as animation.glb (skinned body, garment "
+                   "morph targets), an OBJ sequence, PC2 caches of garment and body, strip.png, temporal.png and "
+                   "metrics.json (jitter, garment inside the body)");
   verb->add_option("--markers", args->markers, "With --pose, for a residual model: the garment's markers (M.json)");
   verb->add_option("--dataset", args->dataset,
                    "Dataset folder: with --samples, the samples to predict; with --pose, the body and garment "

@@ -259,8 +259,8 @@ TEST_F(LearnCli, AMotionClipBecomesAnAnimatedGarment) {
       runPixelcloth({"predict", "--model", model.string(), "--motion", motion.string(), "--out", out.string()});
   ASSERT_EQ(run.status, 0) << run;
   EXPECT_NE(run.out.find("4 frames at 120"), std::string::npos) << run;
-  for (const char* name : {"frames/garment_0000.obj", "frames/garment_0003.obj", "garment.obj", "body.obj",
-                           "garment.pc2", "body.pc2", "strip.png", "temporal.png", "metrics.json"})
+  for (const char* name : {"animation.glb", "frames/garment_0000.obj", "frames/garment_0003.obj", "garment.obj",
+                           "body.obj", "garment.pc2", "body.pc2", "strip.png", "temporal.png", "metrics.json"})
     EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
   EXPECT_FALSE(fs::exists(out / "frames" / "garment_0004.obj"));
   const nlohmann::json metrics = nlohmann::json::parse(readFile(out / "metrics.json"));

@@ -4,9 +4,11 @@
 // and by forward kinematics.
 #include "pixelcloth/motion/motion.h"
 
+#include <assimp/scene.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <assimp/Importer.hpp>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -15,7 +17,9 @@
 #include "pixelcloth/body/body.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/motion/glb.h"
 #include "pixelcloth/motion/sequence.h"
+#include "support/body_fixtures.h"
 #include "support/test_util.h"
 
 namespace fs = std::filesystem;
@@ -413,4 +417,63 @@ TEST(Sequence, JitterIsTheSecondDifferenceAndInsideTheBodyIsCounted) {
   }
   EXPECT_EQ(m.framesWithInside(), 5);
   EXPECT_EQ(m.toJson()["inside_body"]["frames_with_any"], 5);
+}
+
+TEST(Sequence, TheAnimatedGlbReadsBackThroughAssimp) {
+  const pb::Body& body = pixelcloth::testing::coarseMannequin();
+  pixelcloth::core::Mesh garment;
+  garment.V.resize(4, 3);
+  garment.V << 0, 1, 0.2, 0.1, 1, 0.2, 0, 1.1, 0.2, 0.1, 1.1, 0.2;
+  garment.F.resize(2, 3);
+  garment.F << 0, 1, 2, 1, 3, 2;
+  pm::AnimatedScene scene;
+  scene.body = &body;
+  scene.garment = &garment;
+  scene.fps = 24;
+  scene.rootTranslations.resize(3, 3);
+  for (int f = 0; f < 3; ++f) {
+    scene.poses.push_back(pb::randomPose(7 + f, 0.7));
+    scene.rootRotations.push_back(axisRotation(1, 20.0 * f));
+    scene.rootTranslations.row(f) << 0.1 * f, 0, -0.05 * f;
+    scene.garmentFrames.push_back(garment.V + Eigen::MatrixX3d::Constant(4, 3, 0.01 * f));
+  }
+  const fs::path dir = pixelcloth::testing::freshDir("glb");
+  pm::writeAnimatedGlb(dir / "scene.glb", scene);
+
+  Assimp::Importer importer;
+  const aiScene* read = importer.ReadFile((dir / "scene.glb").string(), 0);
+  ASSERT_TRUE(read) << importer.GetErrorString();
+  const aiMesh *cloth = nullptr, *skin = nullptr;
+  for (unsigned m = 0; m < read->mNumMeshes; ++m) {
+    if (read->mMeshes[m]->mNumVertices == 4) cloth = read->mMeshes[m];
+    if (read->mMeshes[m]->mNumBones > 0) skin = read->mMeshes[m];
+  }
+  ASSERT_TRUE(cloth && skin);
+  EXPECT_EQ(static_cast<int>(skin->mNumVertices), body.mesh.numVertices());
+  EXPECT_GE(skin->mNumBones, 10u);
+  ASSERT_EQ(cloth->mNumAnimMeshes, 2u);  // frames 1 and 2
+  // assimp gives a target's positions as the shape itself (base plus displacement): frame 2's.
+  const aiVector3D corner = cloth->mAnimMeshes[1]->mVertices[3];
+  EXPECT_LT((Eigen::Vector3d(corner.x, corner.y, corner.z) - scene.garmentFrames[2].row(3).transpose()).norm(), 1e-6);
+  ASSERT_EQ(read->mNumAnimations, 1u);
+  const aiAnimation& animation = *read->mAnimations[0];
+  const aiNodeAnim *arm = nullptr, *root = nullptr;
+  for (unsigned c = 0; c < animation.mNumChannels; ++c) {
+    const std::string name = animation.mChannels[c]->mNodeName.C_Str();
+    if (name == "l_arm") arm = animation.mChannels[c];
+    if (name == "root") root = animation.mChannels[c];
+  }
+  ASSERT_TRUE(arm && root);
+  ASSERT_EQ(arm->mNumRotationKeys, 3u);
+  for (int f = 0; f < 3; ++f) {
+    const aiQuaternion q = arm->mRotationKeys[f].mValue;
+    const Eigen::Matrix3d r = Eigen::Quaterniond(q.w, q.x, q.y, q.z).toRotationMatrix();
+    EXPECT_LT(rotationDistance(r, scene.poses[f].rotations[5]), 1e-5);
+  }
+  ASSERT_EQ(root->mNumPositionKeys, 3u);
+  const Eigen::Vector3d rest = body.skeleton.positions.row(body.skeleton.index("root")).transpose();
+  const aiVector3D moved = root->mPositionKeys[2].mValue;
+  EXPECT_LT((Eigen::Vector3d(moved.x, moved.y, moved.z) - rest - Eigen::Vector3d(0.2, 0, -0.1)).norm(), 1e-6);
+  EXPECT_NEAR(root->mPositionKeys[2].mTime / (animation.mTicksPerSecond > 0 ? animation.mTicksPerSecond : 1), 2 / 24.0,
+              1e-4);
 }

@@ -1,0 +1,245 @@
+#include "pixelcloth/motion/glb.h"
+
+#include <tiny_gltf.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+
+#include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/error.h"
+
+namespace pixelcloth::motion {
+
+namespace {
+
+/// Appends typed data to the model's one buffer as a buffer view and an accessor of it; returns the accessor.
+class GltfWriter {
+ public:
+  explicit GltfWriter(tinygltf::Model& model) : model_(model) { model_.buffers.resize(1); }
+
+  template <typename T>
+  int accessor(const std::vector<T>& values, int componentType, int type, size_t count, int target = 0) {
+    std::vector<unsigned char>& data = model_.buffers[0].data;
+    while (data.size() % 4) data.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = data.size();
+    view.byteLength = values.size() * sizeof(T);
+    view.target = target;
+    const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
+    data.insert(data.end(), bytes, bytes + view.byteLength);
+    model_.bufferViews.push_back(view);
+    tinygltf::Accessor accessor;
+    accessor.bufferView = static_cast<int>(model_.bufferViews.size()) - 1;
+    accessor.componentType = componentType;
+    accessor.type = type;
+    accessor.count = count;
+    model_.accessors.push_back(accessor);
+    return static_cast<int>(model_.accessors.size()) - 1;
+  }
+
+  /// float VEC3 positions (or deltas) with the min and max glTF asks of POSITION accessors.
+  int positions(const Eigen::MatrixX3d& P) {
+    std::vector<float> values(P.size());
+    for (Eigen::Index i = 0; i < P.rows(); ++i)
+      for (int c = 0; c < 3; ++c) values[3 * i + c] = static_cast<float>(P(i, c));
+    const int a =
+        accessor(values, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, P.rows(), TINYGLTF_TARGET_ARRAY_BUFFER);
+    for (int c = 0; c < 3; ++c) {
+      model_.accessors[a].minValues.push_back(static_cast<float>(P.col(c).minCoeff()));
+      model_.accessors[a].maxValues.push_back(static_cast<float>(P.col(c).maxCoeff()));
+    }
+    return a;
+  }
+
+  int indices(const Eigen::MatrixX3i& F) {
+    std::vector<std::uint32_t> values(F.size());
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+      for (int c = 0; c < 3; ++c) values[3 * f + c] = static_cast<std::uint32_t>(F(f, c));
+    return accessor(values, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, values.size(),
+                    TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  }
+
+  int floats(const std::vector<float>& values, int type, size_t count) {
+    return accessor(values, TINYGLTF_COMPONENT_TYPE_FLOAT, type, count);
+  }
+
+ private:
+  tinygltf::Model& model_;
+};
+
+std::vector<float> quaternion(const Eigen::Matrix3d& r) {
+  const Eigen::Quaterniond q(r);
+  return {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()), static_cast<float>(q.w())};
+}
+
+}  // namespace
+
+void writeAnimatedGlb(const std::filesystem::path& path, const AnimatedScene& scene) {
+  PIXELCLOTH_CHECK(scene.body && scene.garment, path.string() << ": a scene without body or garment");
+  const body::Body& body = *scene.body;
+  const body::Skeleton& skeleton = body.skeleton;
+  const int frames = static_cast<int>(scene.poses.size());
+  PIXELCLOTH_CHECK(frames >= 1 && static_cast<int>(scene.garmentFrames.size()) == frames &&
+                       static_cast<int>(scene.rootRotations.size()) == frames &&
+                       scene.rootTranslations.rows() == frames,
+                   path.string() << ": " << frames << " poses, " << scene.garmentFrames.size() << " garment frames, "
+                                 << scene.rootRotations.size() << " root rotations; expected as many of each");
+  for (int f = 0; f < frames; ++f)
+    PIXELCLOTH_CHECK(
+        scene.garmentFrames[f].rows() == scene.garment->numVertices() && scene.garmentFrames[f].allFinite(),
+        path.string() << ": garment frame " << f << " has " << scene.garmentFrames[f].rows() << " vertices (expected "
+                      << scene.garment->numVertices() << ") or positions that are not finite");
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "pixelcloth";
+  GltfWriter writer(model);
+  const int J = skeleton.numJoints();
+
+  // The skeleton: one node per joint, at its rest offset from its parent (rest frames are world-aligned).
+  for (int j = 0; j < J; ++j) {
+    tinygltf::Node node;
+    node.name = skeleton.names[j];
+    const int parent = skeleton.parents[j];
+    const Eigen::RowVector3d offset =
+        parent < 0 ? Eigen::RowVector3d(skeleton.positions.row(j))
+                   : Eigen::RowVector3d(skeleton.positions.row(j) - skeleton.positions.row(parent));
+    node.translation = {offset.x(), offset.y(), offset.z()};
+    model.nodes.push_back(node);
+  }
+  for (int j = 0; j < J; ++j)
+    if (skeleton.parents[j] >= 0) model.nodes[skeleton.parents[j]].children.push_back(j);
+
+  // The body: rest positions, its four strongest joints per vertex, the skin.
+  const int V = body.mesh.numVertices();
+  std::vector<std::uint16_t> joints(4 * static_cast<size_t>(V));
+  std::vector<float> weights(4 * static_cast<size_t>(V));
+  std::vector<int> order(J);
+  for (int v = 0; v < V; ++v) {
+    std::iota(order.begin(), order.end(), 0);
+    std::partial_sort(order.begin(), order.begin() + std::min(4, J), order.end(),
+                      [&](int a, int b) { return body.weights(v, a) > body.weights(v, b); });
+    double sum = 0;
+    for (int k = 0; k < std::min(4, J); ++k) sum += body.weights(v, order[k]);
+    for (int k = 0; k < 4; ++k) {
+      joints[4 * v + k] = static_cast<std::uint16_t>(k < J ? order[k] : 0);
+      weights[4 * v + k] = k < J && sum > 0 ? static_cast<float>(body.weights(v, order[k]) / sum) : 0.0f;
+    }
+  }
+  tinygltf::Primitive skin;
+  skin.mode = TINYGLTF_MODE_TRIANGLES;
+  skin.attributes["POSITION"] = writer.positions(body.mesh.V);
+  skin.attributes["JOINTS_0"] = writer.accessor(joints, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, V,
+                                                TINYGLTF_TARGET_ARRAY_BUFFER);
+  skin.attributes["WEIGHTS_0"] =
+      writer.accessor(weights, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, V, TINYGLTF_TARGET_ARRAY_BUFFER);
+  skin.indices = writer.indices(body.mesh.F);
+  tinygltf::Mesh bodyMesh;
+  bodyMesh.name = "body";
+  bodyMesh.primitives.push_back(skin);
+  model.meshes.push_back(bodyMesh);
+  std::vector<float> inverseBind;
+  for (int j = 0; j < J; ++j) {
+    Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+    m.topRightCorner<3, 1>() = -skeleton.positions.row(j).transpose().cast<float>();
+    inverseBind.insert(inverseBind.end(), m.data(), m.data() + 16);  // column-major, as glTF stores matrices
+  }
+  tinygltf::Skin skinning;
+  skinning.name = "skeleton";
+  for (int j = 0; j < J; ++j) skinning.joints.push_back(j);
+  const int root = skeleton.index("root");
+  skinning.skeleton = root;
+  skinning.inverseBindMatrices = writer.floats(inverseBind, TINYGLTF_TYPE_MAT4, J);
+  model.skins.push_back(skinning);
+  tinygltf::Node bodyNode;
+  bodyNode.name = "body";
+  bodyNode.mesh = 0;
+  bodyNode.skin = 0;
+  model.nodes.push_back(bodyNode);
+
+  // The garment: frame 0 and one morph target per later frame (its displacement from frame 0).
+  const core::Mesh& garment = *scene.garment;
+  tinygltf::Primitive cloth;
+  cloth.mode = TINYGLTF_MODE_TRIANGLES;
+  cloth.attributes["POSITION"] = writer.positions(scene.garmentFrames.front());
+  cloth.indices = writer.indices(garment.F);
+  for (int f = 1; f < frames; ++f)
+    cloth.targets.push_back({{"POSITION", writer.positions(scene.garmentFrames[f] - scene.garmentFrames.front())}});
+  tinygltf::Mesh garmentMesh;
+  garmentMesh.name = "garment";
+  garmentMesh.primitives.push_back(cloth);
+  garmentMesh.weights.assign(frames - 1, 0.0);
+  model.meshes.push_back(garmentMesh);
+  tinygltf::Node garmentNode;
+  garmentNode.name = "garment";
+  garmentNode.mesh = 1;
+  model.nodes.push_back(garmentNode);
+  const int bodyNodeIndex = J, garmentNodeIndex = J + 1;
+  tinygltf::Scene sceneNodes;
+  sceneNodes.nodes = {root, bodyNodeIndex, garmentNodeIndex};
+  model.scenes.push_back(sceneNodes);
+  model.defaultScene = 0;
+
+  // The animation, keyed at every frame.
+  tinygltf::Animation animation;
+  animation.name = "motion";
+  std::vector<float> times(frames);
+  for (int f = 0; f < frames; ++f) times[f] = static_cast<float>(f / scene.fps);
+  const int input = writer.floats(times, TINYGLTF_TYPE_SCALAR, frames);
+  model.accessors[input].minValues = {times.front()};
+  model.accessors[input].maxValues = {times.back()};
+  auto channel = [&](int node, const std::string& pathName, const std::vector<float>& values, int type) {
+    tinygltf::AnimationSampler sampler;
+    sampler.input = input;
+    sampler.output = writer.floats(values, type, type == TINYGLTF_TYPE_SCALAR ? values.size() : frames);
+    sampler.interpolation = "LINEAR";
+    animation.samplers.push_back(sampler);
+    tinygltf::AnimationChannel c;
+    c.sampler = static_cast<int>(animation.samplers.size()) - 1;
+    c.target_node = node;
+    c.target_path = pathName;
+    animation.channels.push_back(c);
+  };
+  const std::array<int, 10> poseJoints = skeleton.poseJointIndices();
+  for (int k = 0; k < 10; ++k) {
+    std::vector<float> rotations;
+    for (int f = 0; f < frames; ++f) {
+      const std::vector<float> q = quaternion(scene.poses[f].rotations[k]);
+      rotations.insert(rotations.end(), q.begin(), q.end());
+    }
+    channel(poseJoints[k], "rotation", rotations, TINYGLTF_TYPE_VEC4);
+  }
+  std::vector<float> rootRotation, rootTranslation;
+  for (int f = 0; f < frames; ++f) {
+    const std::vector<float> q = quaternion(scene.rootRotations[f]);
+    rootRotation.insert(rootRotation.end(), q.begin(), q.end());
+    for (int c = 0; c < 3; ++c)
+      rootTranslation.push_back(static_cast<float>(skeleton.positions(root, c) + scene.rootTranslations(f, c)));
+  }
+  channel(root, "rotation", rootRotation, TINYGLTF_TYPE_VEC4);
+  channel(root, "translation", rootTranslation, TINYGLTF_TYPE_VEC3);
+  if (frames > 1) {
+    std::vector<float> morph(static_cast<size_t>(frames) * (frames - 1), 0.0f);
+    for (int f = 1; f < frames; ++f) morph[static_cast<size_t>(f) * (frames - 1) + (f - 1)] = 1.0f;
+    channel(garmentNodeIndex, "weights", morph, TINYGLTF_TYPE_SCALAR);
+  }
+  model.animations.push_back(animation);
+  model.buffers[0].data.resize((model.buffers[0].data.size() + 3) / 4 * 4, 0);
+
+  std::ostringstream bytes;
+  tinygltf::TinyGLTF gltf;
+  PIXELCLOTH_CHECK(gltf.WriteGltfSceneToStream(&model, bytes, false, true), path.string()
+                                                                                << ": writing the GLB failed");
+  const std::string data = bytes.str();
+  core::writeAtomically(path, [&](const std::filesystem::path& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    out.write(data.data(), static_cast<std::streamsize>(data.size()));
+    PIXELCLOTH_CHECK(out.good(), temporary.string() << ": cannot write");
+  });
+}
+
+}  // namespace pixelcloth::motion

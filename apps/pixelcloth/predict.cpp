@@ -1,7 +1,6 @@
 // pixelcloth predict: garments from a trained model, for a pose (and its markers) or for dataset samples.
 #include "pixelcloth/learn/predict.h"
 
-#include <chrono>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -15,10 +14,9 @@
 #include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/data/dataset.h"
+#include "pixelcloth/eval/motion_prediction.h"
 #include "pixelcloth/learn/training_data.h"
-#include "pixelcloth/motion/glb.h"
 #include "pixelcloth/motion/motion.h"
-#include "pixelcloth/motion/sequence.h"
 #include "pixelcloth/patches/cloth_image.h"
 #include "pixelcloth/stitch/evaluate.h"
 #include "pixelcloth/viz/motion_pictures.h"
@@ -66,58 +64,19 @@ void runPredictMotion(const PredictArgs& args) {
                                                   << " is a residual model, which needs the garment's markers in "
                                                      "every frame: use reconstruct --markers-sequence");
   const std::vector<stitch::Stitcher> stitchers = makeStitchers(args.stitch, inputs);
-  std::vector<int> rows(clip.frames());
-  for (int f = 0; f < clip.frames(); ++f) rows[f] = f;
-  const auto start = std::chrono::steady_clock::now();
-  const stitch::RowPredictions predicted = stitch::predictRows(*inputs.model, inputs.data, rows, &stitchers.front());
-  const double predictSeconds = core::secondsSince(start);
-
-  // The body of every frame, posed as the model sees it (its pose size), and both moved as the clip's root moves.
-  const body::Body body = data::loadDatasetBody(datasetFolder(inputs.data.folder.string()));
-  std::vector<Eigen::MatrixX3d> bodyFrames;
-  for (int f = 0; f < clip.frames(); ++f)
-    bodyFrames.push_back(body.posedVertices(body::Pose::fromLeading(inputs.data.inputs.row(f).transpose())));
-  const motion::TemporalMetrics metrics =
-      motion::temporalMetrics(predicted.positions, bodyFrames, body.mesh.F, clip.fps);
-  const Eigen::Vector3d root = body.skeleton.positions.row(body.skeleton.index("root")).transpose();
-  const std::vector<Eigen::MatrixX3d> garmentWorld = motion::withRootMotion(predicted.positions, clip, root);
-  const std::vector<Eigen::MatrixX3d> bodyWorld = motion::withRootMotion(bodyFrames, clip, root);
-
+  const eval::MotionPrediction result = eval::predictMotion(
+      inputs, stitchers.front(), clip, args.out,
+      {{"model", args.model}, {"motion", args.motion}, {"stitch", args.stitch.modes}, {"engine", args.engine}});
   const fs::path out = args.out;
-  core::ensureOutputFolder(out);
-  motion::writeObjSequence(out / "frames", "garment", inputs.data.garment.mesh, garmentWorld);
-  core::Mesh garmentBase = inputs.data.garment.mesh, bodyBase = body.mesh;
-  garmentBase.V = garmentWorld.front();
-  bodyBase.V = bodyWorld.front();
-  core::writeMesh(out / "garment.obj", garmentBase);
-  core::writeMesh(out / "body.obj", bodyBase);
-  motion::writePc2(out / "garment.pc2", garmentWorld);
-  motion::writePc2(out / "body.pc2", bodyWorld);
-  motion::AnimatedScene scene;
-  scene.body = &body;
-  for (int f = 0; f < clip.frames(); ++f)
-    scene.poses.push_back(body::Pose::fromLeading(inputs.data.inputs.row(f).transpose()));
-  scene.rootRotations = clip.rootRotations;
-  scene.rootTranslations = clip.rootTranslations;
-  scene.garment = &inputs.data.garment.mesh;
-  scene.garmentFrames = garmentWorld;
-  scene.fps = clip.fps;
-  motion::writeAnimatedGlb(out / "animation.glb", scene);
-  core::writePng(out / "strip.png", viz::renderGarmentStrip(body.mesh.F, bodyFrames, inputs.data.garment.mesh,
-                                                            predicted.positions, clip.fps));
-  core::writePng(out / "temporal.png", viz::renderTemporalMetrics(metrics));
-  nlohmann::json json = metrics.toJson();
-  json["model"] = args.model;
-  json["motion"] = args.motion;
-  json["stitch"] = args.stitch.modes;
-  json["engine"] = args.engine;
-  json["prediction_ms_per_frame"] = 1000 * predictSeconds / clip.frames();
-  core::writeJson(out / "metrics.json", json);
+  core::writePng(out / "strip.png",
+                 viz::renderGarmentStrip(data::loadDatasetBody(inputs.data.folder).mesh.F, result.body,
+                                         inputs.data.garment.mesh, result.garment, clip.fps));
+  core::writePng(out / "temporal.png", viz::renderTemporalMetrics(result.metrics));
   std::cout << std::fixed << std::setprecision(3) << "predict: " << clip.frames() << " frames at " << clip.fps
-            << " fps in " << predictSeconds << " s (" << 1000 * predictSeconds / clip.frames()
-            << " ms a frame); garment jitter " << metrics.meanGarmentJitterCm() << " cm (body "
-            << metrics.meanBodyJitterCm() << " cm); garment inside the body in " << metrics.framesWithInside()
-            << " frames -> " << out.string()
+            << " fps in " << result.predictSeconds << " s (" << 1000 * result.predictSeconds / clip.frames()
+            << " ms a frame); garment jitter " << result.metrics.meanGarmentJitterCm() << " cm (body "
+            << result.metrics.meanBodyJitterCm() << " cm); garment inside the body in "
+            << result.metrics.framesWithInside() << " frames -> " << out.string()
             << "/{animation.glb, frames/garment_NNNN.obj, garment.obj, body.obj, garment.pc2, body.pc2, strip.png, "
                "temporal.png, metrics.json}\n";
 }

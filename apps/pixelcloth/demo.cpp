@@ -67,6 +67,10 @@ void runDemo(const DemoArgs& args) {
   report.step("seams: the paper's tables, a GAN blender, every stitch mode measured",
               [&] { seams = eval::runDemoSeams(out, plan); });
   viz::demoSeams(report, body, seams);
+  eval::DemoMotion motion;
+  report.step("motion: a clip of the demo's own out as a GLB, in through assimp, through the patch decoders",
+              [&] { motion = eval::runDemoMotion(out, plan); });
+  viz::demoMotion(report, body, motion);
   report.write();
 }
 }  // namespace

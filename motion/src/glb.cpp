@@ -80,11 +80,11 @@ std::vector<float> quaternion(const Eigen::Matrix3d& r) {
 }  // namespace
 
 void writeAnimatedGlb(const std::filesystem::path& path, const AnimatedScene& scene) {
-  PIXELCLOTH_CHECK(scene.body && scene.garment, path.string() << ": a scene without body or garment");
+  PIXELCLOTH_CHECK(scene.body, path.string() << ": a scene without a body");
   const body::Body& body = *scene.body;
   const body::Skeleton& skeleton = body.skeleton;
   const int frames = static_cast<int>(scene.poses.size());
-  PIXELCLOTH_CHECK(frames >= 1 && static_cast<int>(scene.garmentFrames.size()) == frames &&
+  PIXELCLOTH_CHECK(frames >= 1 && (!scene.garment || static_cast<int>(scene.garmentFrames.size()) == frames) &&
                        static_cast<int>(scene.rootRotations.size()) == frames &&
                        scene.rootTranslations.rows() == frames,
                    path.string() << ": " << frames << " poses, " << scene.garmentFrames.size() << " garment frames, "
@@ -162,25 +162,28 @@ void writeAnimatedGlb(const std::filesystem::path& path, const AnimatedScene& sc
   model.nodes.push_back(bodyNode);
 
   // The garment: frame 0 and one morph target per later frame (its displacement from frame 0).
-  const core::Mesh& garment = *scene.garment;
-  tinygltf::Primitive cloth;
-  cloth.mode = TINYGLTF_MODE_TRIANGLES;
-  cloth.attributes["POSITION"] = writer.positions(scene.garmentFrames.front());
-  cloth.indices = writer.indices(garment.F);
-  for (int f = 1; f < frames; ++f)
-    cloth.targets.push_back({{"POSITION", writer.positions(scene.garmentFrames[f] - scene.garmentFrames.front())}});
-  tinygltf::Mesh garmentMesh;
-  garmentMesh.name = "garment";
-  garmentMesh.primitives.push_back(cloth);
-  garmentMesh.weights.assign(frames - 1, 0.0);
-  model.meshes.push_back(garmentMesh);
-  tinygltf::Node garmentNode;
-  garmentNode.name = "garment";
-  garmentNode.mesh = 1;
-  model.nodes.push_back(garmentNode);
   const int bodyNodeIndex = J, garmentNodeIndex = J + 1;
   tinygltf::Scene sceneNodes;
-  sceneNodes.nodes = {root, bodyNodeIndex, garmentNodeIndex};
+  sceneNodes.nodes = {root, bodyNodeIndex};
+  if (scene.garment) {
+    const core::Mesh& garment = *scene.garment;
+    tinygltf::Primitive cloth;
+    cloth.mode = TINYGLTF_MODE_TRIANGLES;
+    cloth.attributes["POSITION"] = writer.positions(scene.garmentFrames.front());
+    cloth.indices = writer.indices(garment.F);
+    for (int f = 1; f < frames; ++f)
+      cloth.targets.push_back({{"POSITION", writer.positions(scene.garmentFrames[f] - scene.garmentFrames.front())}});
+    tinygltf::Mesh garmentMesh;
+    garmentMesh.name = "garment";
+    garmentMesh.primitives.push_back(cloth);
+    garmentMesh.weights.assign(frames - 1, 0.0);
+    model.meshes.push_back(garmentMesh);
+    tinygltf::Node garmentNode;
+    garmentNode.name = "garment";
+    garmentNode.mesh = 1;
+    model.nodes.push_back(garmentNode);
+    sceneNodes.nodes.push_back(garmentNodeIndex);
+  }
   model.scenes.push_back(sceneNodes);
   model.defaultScene = 0;
 
@@ -222,7 +225,7 @@ void writeAnimatedGlb(const std::filesystem::path& path, const AnimatedScene& sc
   }
   channel(root, "rotation", rootRotation, TINYGLTF_TYPE_VEC4);
   channel(root, "translation", rootTranslation, TINYGLTF_TYPE_VEC3);
-  if (frames > 1) {
+  if (scene.garment && frames > 1) {
     std::vector<float> morph(static_cast<size_t>(frames) * (frames - 1), 0.0f);
     for (int f = 1; f < frames; ++f) morph[static_cast<size_t>(f) * (frames - 1) + (f - 1)] = 1.0f;
     channel(garmentNodeIndex, "weights", morph, TINYGLTF_TYPE_SCALAR);

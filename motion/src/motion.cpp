@@ -41,8 +41,14 @@ std::string normalised(const std::string& name) {
   return out;
 }
 
-/// The clip joint whose name matches one of `candidates` ('|'-separated), or -1.
+/// The clip joint whose name matches one of `candidates` ('|'-separated), or -1: a name spelled exactly first (an
+/// importer's own top node may be called "ROOT"), then one matching as normalised() compares.
 int findJoint(const Clip& clip, const std::string& candidates) {
+  {
+    std::istringstream in(candidates);
+    for (std::string candidate; std::getline(in, candidate, '|');)
+      if (clip.find(candidate) >= 0) return clip.find(candidate);
+  }
   std::istringstream in(candidates);
   for (std::string candidate; std::getline(in, candidate, '|');) {
     const std::string wanted = normalised(candidate);
@@ -133,6 +139,8 @@ const std::vector<JointMap>& builtinJointMaps() {
               {"pelvis", "spine1", "spine2", "spine3", "neck", "left_collar|L_Collar", "left_shoulder|L_Shoulder",
                "left_elbow|L_Elbow", "right_collar|R_Collar", "right_shoulder|R_Shoulder", "right_elbow|R_Elbow"},
               {{"neck", "head"}, {"l_forearm", "left_wrist|L_Wrist"}, {"r_forearm", "right_wrist|R_Wrist"}}),
+      // pixelcloth's own joint names, as its animated GLBs carry them.
+      makeMap("pixelcloth", mappedJoints(), {{"neck", "head"}}),
   };
   return maps;
 }

@@ -476,4 +476,18 @@ TEST(Sequence, TheAnimatedGlbReadsBackThroughAssimp) {
   EXPECT_LT((Eigen::Vector3d(moved.x, moved.y, moved.z) - rest - Eigen::Vector3d(0.2, 0, -0.1)).norm(), 1e-6);
   EXPECT_NEAR(root->mPositionKeys[2].mTime / (animation.mTicksPerSecond > 0 ? animation.mTicksPerSecond : 1), 2 / 24.0,
               1e-4);
+
+  // And as a clip: our own joint names are a built-in map, and the poses and root motion come back.
+  const pm::Clip clip = pm::readClip(dir / "scene.glb");
+  EXPECT_NEAR(clip.fps, 24, 1e-3);
+  const pm::JointMap map = pm::detectJointMap(clip);
+  EXPECT_EQ(map.name, "pixelcloth");
+  const pm::Motion motion = pm::retarget(clip, body.skeleton, map);
+  ASSERT_EQ(motion.frames(), 3);
+  for (int f = 0; f < 3; ++f) {
+    for (int k = 0; k < 10; ++k)
+      EXPECT_LT(rotationDistance(motion.poses[f].rotations[k], scene.poses[f].rotations[k]), 1e-4) << f << " " << k;
+    EXPECT_LT(rotationDistance(motion.rootRotations[f], scene.rootRotations[f]), 1e-5);
+    EXPECT_LT((motion.rootTranslations.row(f) - scene.rootTranslations.row(f)).norm(), 1e-5);
+  }
 }

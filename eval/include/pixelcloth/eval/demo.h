@@ -14,6 +14,7 @@
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/eval/experiments.h"
+#include "pixelcloth/eval/motion_prediction.h"
 #include "pixelcloth/garment/garment.h"
 #include "pixelcloth/garment/obj_import.h"
 #include "pixelcloth/learn/train.h"
@@ -121,6 +122,19 @@ struct DemoSeams {
   std::vector<std::pair<stitch::StitchMode, Eigen::MatrixX3d>> examples;
 };
 DemoSeams runDemoSeams(const std::filesystem::path& report, const DemoPlan& plan);
+
+/// A motion of the demo's own through the patch decoders of runDemoLearning: key poses inside the joint limits eased
+/// into one another with a slow turn of the root, written as an animated GLB the way other tools write clips
+/// (motion/clip.glb), imported back through assimp and retargeted (motion/imported/), and predicted frame by frame
+/// (motion/predicted/: eval::predictMotion's files).
+struct DemoMotion {
+  std::filesystem::path clip, imported, predicted;
+  int keyPoses = 0;
+  motion::Motion motion;          ///< as imported
+  double maxRetargetDegrees = 0;  ///< the imported poses against the ones written, the largest joint angle apart
+  MotionPrediction prediction;
+};
+DemoMotion runDemoMotion(const std::filesystem::path& report, const DemoPlan& plan);
 
 /// A T-shirt OBJ written the way other cloth programs write theirs (tube sleeves with several UVs per vertex, Z up,
 /// centimetres, another origin), imported without a cage file and taken through the pipeline as a garment folder in

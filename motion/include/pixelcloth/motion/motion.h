@@ -34,7 +34,8 @@ struct JointMap {
 
 /// The built-in maps: CMU (the BVH conversions of the CMU motion-capture database: Hips, LowerBack, Spine, Spine1,
 /// Neck, LeftShoulder, LeftArm, LeftForeArm, ...), Mixamo (Hips, Spine, Spine1, Spine2, Neck, LeftShoulder, ...;
-/// "mixamorig:" prefixes ignored) and SMPL (pelvis, spine1-3, neck, left_collar, left_shoulder, left_elbow, ...).
+/// "mixamorig:" prefixes ignored), SMPL (pelvis, spine1-3, neck, left_collar, left_shoulder, left_elbow, ...) and
+/// pixelcloth's own (root, lower_back, ..., r_forearm: what writeAnimatedGlb names the joints).
 /// Names are matched ignoring case, underscores, spaces and any prefix up to a ':'.
 const std::vector<JointMap>& builtinJointMaps();
 

@@ -75,4 +75,8 @@ void demoLearning(Report& report, const body::Body& body, const eval::DemoLearni
 /// its pictures).
 void demoSeams(Report& report, const body::Body& body, const eval::DemoSeams& seams);
 
+/// The demo's own motion through the patch decoders (motion/): the clip's strip, the garment on the moving body, the
+/// temporal measures.
+void demoMotion(Report& report, const body::Body& body, const eval::DemoMotion& demo);
+
 }  // namespace pixelcloth::viz

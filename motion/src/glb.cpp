@@ -89,7 +89,7 @@ void writeAnimatedGlb(const std::filesystem::path& path, const AnimatedScene& sc
                        scene.rootTranslations.rows() == frames,
                    path.string() << ": " << frames << " poses, " << scene.garmentFrames.size() << " garment frames, "
                                  << scene.rootRotations.size() << " root rotations; expected as many of each");
-  for (int f = 0; f < frames; ++f)
+  for (int f = 0; scene.garment && f < frames; ++f)
     PIXELCLOTH_CHECK(
         scene.garmentFrames[f].rows() == scene.garment->numVertices() && scene.garmentFrames[f].allFinite(),
         path.string() << ": garment frame " << f << " has " << scene.garmentFrames[f].rows() << " vertices (expected "

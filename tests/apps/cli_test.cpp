@@ -126,6 +126,15 @@ TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
   EXPECT_GE(fitted.at("cage_lines").size(), 10u);
   EXPECT_TRUE(fs::is_regular_file(out / "own_garment" / "model_patch" / "patch_00" / "model.json"))
       << listing(filesUnder(out / "own_garment" / "model_patch"));
+  // The demo's own motion went out as a GLB, came back in through assimp unchanged, and was predicted frame by frame.
+  EXPECT_NE(html.find("Motion"), std::string::npos);
+  for (const char* file : {"motion/clip.glb", "motion/imported/poses.npy", "motion/predicted/animation.glb",
+                           "motion/predicted/garment.pc2", "motion/predicted/body.pc2", "motion/predicted/metrics.json"})
+    EXPECT_TRUE(fs::is_regular_file(out / file)) << file;
+  const nlohmann::json motion = nlohmann::json::parse(readFile(out / "report.json"))["motion"];
+  EXPECT_EQ(motion["joint_map"], "pixelcloth");
+  EXPECT_LT(motion["max_retarget_error_deg"].get<double>(), 0.01);
+  EXPECT_GT(motion["metrics"]["garment_jitter_cm"]["mean"].get<double>(), 0);
 
   // Run again into the same folder, as a user does after pulling: the datasets are made afresh, so the models the first
   // run left were trained on other samples; the demo retrains them instead of refusing to resume.

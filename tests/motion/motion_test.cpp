@@ -491,3 +491,20 @@ TEST(Sequence, TheAnimatedGlbReadsBackThroughAssimp) {
     EXPECT_LT((motion.rootTranslations.row(f) - scene.rootTranslations.row(f)).norm(), 1e-5);
   }
 }
+
+TEST(Sequence, ABodyAloneIsAnAnimatedGlbToo) {
+  const pb::Body& body = pixelcloth::testing::coarseMannequin();
+  pm::AnimatedScene scene;
+  scene.body = &body;
+  scene.fps = 24;
+  const int frames = 73;
+  scene.rootTranslations = Eigen::MatrixX3d::Zero(frames, 3);
+  for (int f = 0; f < frames; ++f) {
+    scene.poses.push_back(pb::randomPose(f, 0.5));
+    scene.rootRotations.push_back(Eigen::Matrix3d::Identity());
+  }
+  const fs::path dir = pixelcloth::testing::freshDir("glb_body");
+  pm::writeAnimatedGlb(dir / "body.glb", scene);
+  const pm::Clip clip = pm::readClip(dir / "body.glb");
+  EXPECT_EQ(clip.frames(), frames);
+}

@@ -7,6 +7,7 @@
 #include "pixelcloth/learn/prediction_inputs.h"
 #include "pixelcloth/motion/clip.h"
 #include "pixelcloth/motion/glb.h"
+#include "pixelcloth/sim/pose_sampler.h"
 #include "pixelcloth/stitch/stitcher.h"
 
 namespace pixelcloth::eval {
@@ -22,12 +23,15 @@ DemoMotion runDemoMotion(const fs::path& report, const DemoPlan& plan) {
   const data::DatasetFolder dataset(report / "dataset_tshirt");
   const body::Body body = data::loadDatasetBody(dataset);
 
-  // Three seconds at 24 fps through four key poses (Euler angles eased between them stay inside the limits' box) and
-  // back to the first, the root turning 40 degrees and stepping forward.
+  // Three seconds at 24 fps through four key poses from the paper's sampler (arms clear of the torso; Euler angles
+  // eased between them stay inside the limits' box) and back to the first, the root turning 40 degrees and stepping
+  // forward.
   constexpr int kKeys = 4, kFramesPerKey = 18;
   constexpr double kFps = 24;
+  sim::PoseSamplerOptions sampling;
+  sampling.seed = plan.seed + 1000;
   std::vector<Eigen::Matrix<double, 10, 3>> keys;
-  for (int k = 0; k < kKeys; ++k) keys.push_back(body::randomPose(plan.seed * 100 + k, 0.6).toEulerDegrees());
+  for (const body::Pose& pose : sim::PoseSampler(body, sampling).sample(kKeys)) keys.push_back(pose.toEulerDegrees());
   keys.push_back(keys.front());
   motion::AnimatedScene scene;
   scene.body = &body;

@@ -29,12 +29,12 @@ void demoMotion(Report& report, const body::Body& body, const eval::DemoMotion& 
                              {"files", p.files}};
   std::ostringstream text;
   text << std::fixed << std::setprecision(2) << "A motion of the demo's own (motion/): " << p.frames << " frames at "
-       << p.fps << " fps through " << demo.keyPoses
-       << " key poses drawn inside the joint limits, eased into one another, the root turning 40 degrees and "
+       << std::setprecision(0) << p.fps << std::setprecision(2) << " fps through " << demo.keyPoses
+       << " key poses from the paper's sampler, eased into one another, the root turning 40 degrees and "
           "stepping forward. It is written as an animated GLB the way other tools write clips (motion/clip.glb), "
           "and imported back through assimp like any clip (pixelcloth motion import): the "
-       << demo.motion.map.name << " joint map was recognised, and the retargeted poses are within "
-       << std::setprecision(4) << demo.maxRetargetDegrees << std::setprecision(2)
+       << demo.motion.map.name << " joint map was recognised, and the retargeted poses are within " << std::defaultfloat
+       << std::setprecision(2) << demo.maxRetargetDegrees << std::fixed
        << " degrees of the ones written. The demo's 28 patch decoders then predicted every frame in "
        << 1000 * p.predictSeconds / p.frames
        << " ms a frame (pixelcloth predict --motion). Temporal measures: the garment's jitter, the mean of |x(t+1) - "

@@ -123,7 +123,7 @@ struct DemoSeams {
 };
 DemoSeams runDemoSeams(const std::filesystem::path& report, const DemoPlan& plan);
 
-/// A motion of the demo's own through the patch decoders of runDemoLearning: key poses inside the joint limits eased
+/// A motion of the demo's own through the patch decoders of runDemoLearning: key poses from the paper's sampler eased
 /// into one another with a slow turn of the root, written as an animated GLB the way other tools write clips
 /// (motion/clip.glb), imported back through assimp and retargeted (motion/imported/), and predicted frame by frame
 /// (motion/predicted/: eval::predictMotion's files).

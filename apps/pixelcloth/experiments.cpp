@@ -36,7 +36,7 @@ void registerExperiments(CLI::App& app) {
       "filter and GAN, body shapes and broken skinning, the necktie, and the learned refinement of marker "
       "reconstructions (results.md and figures/ in --out). A run resumes what an earlier one left in --out");
   verb->add_option("--scale", args->scale,
-                   "small (a smoke run of a few minutes) or full (about an hour and a half on 2 cores)")
+                   "small (a smoke run of a few minutes) or full (about two hours on 2 cores)")
       ->capture_default_str()
       ->check(CLI::IsMember({"small", "full"}));
   verb->add_option("--out", args->out, "Output folder (default: experiments/SCALE)");

@@ -170,7 +170,7 @@ ExperimentPlan ExperimentPlan::ofScale(Scale scale) {
     // 400 T-shirts (320 train) and networks wide enough to fit them: the paper's width for the whole decoder and half
     // of it for the 28 patch decoders, each with a cosine schedule (docs/learning.md, "Width and the learning-rate
     // schedule"). The comparisons within one architecture (losses, bodies) and the residual decoders, whose targets
-    // are small, train at a quarter width. About an hour and a half on 2 cores.
+    // are small, train at a quarter width. About two hours on 2 cores.
     plan.tshirts = 400;
     plan.neckties = 1700;
     plan.whole = {1.0, 50, learn::Schedule::Cosine};

@@ -24,7 +24,7 @@
 
 namespace pixelcloth::eval {
 
-/// The two sizes of the plan: a smoke run of a few minutes, and the full run of about an hour and a half on 2 cores.
+/// The two sizes of the plan: a smoke run of a few minutes, and the full run of about two hours on 2 cores.
 enum class Scale { Small, Full };
 const char* scaleName(Scale scale);                                        ///< "small", "full"
 Scale scaleFromName(const std::string& name, const std::string& context);  ///< InputError naming `context` otherwise

@@ -238,11 +238,7 @@ void writeAnimatedGlb(const std::filesystem::path& path, const AnimatedScene& sc
   PIXELCLOTH_CHECK(gltf.WriteGltfSceneToStream(&model, bytes, false, true), path.string()
                                                                                 << ": writing the GLB failed");
   const std::string data = bytes.str();
-  core::writeAtomically(path, [&](const std::filesystem::path& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out.write(data.data(), static_cast<std::streamsize>(data.size()));
-    PIXELCLOTH_CHECK(out.good(), temporary.string() << ": cannot write");
-  });
+  core::writeTextAtomically(path, data);
 }
 
 }  // namespace pixelcloth::motion

@@ -73,11 +73,7 @@ void writePc2(const fs::path& path, const std::vector<Eigen::MatrixX3d>& frames,
     for (Eigen::Index i = 0; i < points; ++i)
       for (int c = 0; c < 3; ++c) put<float>(bytes, static_cast<float>(frames[f](i, c)));
   }
-  core::writeAtomically(path, [&](const fs::path& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    PIXELCLOTH_CHECK(out.good(), temporary.string() << ": cannot write");
-  });
+  core::writeTextAtomically(path, bytes);
 }
 
 std::vector<Eigen::MatrixX3f> readPc2(const fs::path& path) {

@@ -5,7 +5,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cstring>
-#include <fstream>
 #include <numeric>
 #include <sstream>
 

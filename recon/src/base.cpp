@@ -2,20 +2,17 @@
 #include "pixelcloth/recon/base.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <exception>
 #include <iomanip>
 #include <memory>
-#include <mutex>
 #include <sstream>
-#include <thread>
 #include <vector>
 
 #include "dataset_internal.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/measure.h"
+#include "pixelcloth/core/parallel.h"
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/data/base_set.h"
 #include "pixelcloth/data/dataset.h"
@@ -116,37 +113,17 @@ BaseSetReport writeDatasetBases(const data::DatasetFolder& where, const fs::path
     pushed[r] = static_cast<double>(rec.pushedOut) / V;
   };
 
-  const int threads = std::max(
-      1, std::min(rows, options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency())));
-  std::unique_ptr<core::Progress> progress;
-  progress = std::make_unique<core::Progress>("bases", rows);
-  std::atomic<int> next{0};
-  std::exception_ptr failure;
-  std::mutex failureMutex;
-  auto work = [&] {
+  auto progress = std::make_unique<core::Progress>("bases", rows);
+  core::parallelFor(rows, options.threads, [&](int r) {
     try {
-      for (int r = next++; r < rows; r = next++) {
-        try {
-          rebuild(r);
-        } catch (const core::InputError& e) {
-          // Which sample's markers could not be solved (dropout can leave a closed curve too few).
-          PIXELCLOTH_FAIL(datasetFolder.string()
-                          << ": sample " << dataset.info.settings.first() + r << ": " << e.what());
-        }
-        if (progress) progress->advance();
-      }
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(failureMutex);
-      if (!failure) failure = std::current_exception();
-      next = rows;
+      rebuild(r);
+    } catch (const core::InputError& e) {
+      // Which sample's markers could not be solved (dropout can leave a closed curve too few).
+      PIXELCLOTH_FAIL(datasetFolder.string() << ": sample " << dataset.info.settings.first() + r << ": " << e.what());
     }
-  };
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threads; ++t) workers.emplace_back(work);
-  work();
-  for (std::thread& worker : workers) worker.join();
-  if (failure) std::rethrow_exception(failure);
-  if (progress) progress->finish();
+    progress->advance();
+  });
+  progress->finish();
 
   BaseSetReport report;
   report.samples = rows;

@@ -12,6 +12,7 @@
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/parallel.h"
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/sim/pose_sampler.h"
@@ -101,10 +102,6 @@ void forEachOnSimulators(GarmentSimulator& first, const body::Body& body, const 
   if (failure) std::rethrow_exception(failure);
 }
 
-int threadCount(int requested, int jobs) {
-  return std::max(1, std::min(jobs, requested > 0 ? requested : static_cast<int>(std::thread::hardware_concurrency())));
-}
-
 }  // namespace
 
 void GenerateOptions::validate() const {
@@ -159,7 +156,7 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
   GenerateReport report;
   report.resumed = writer.done();
   if (!pending.empty()) {
-    const int threads = threadCount(options.threads, static_cast<int>(pending.size()));
+    const int threads = core::threadCount(options.threads, static_cast<int>(pending.size()));
     PIXELCLOTH_INFO("generate: settling the garment in the rest pose");
     GarmentSimulator first(body, garment, dressing, options.simulation);
     const data::SampleStats& rest = first.restStats();
@@ -225,7 +222,8 @@ std::vector<data::SampleStats> simulatePoses(const body::Body& body, const garme
   progress = std::make_unique<core::Progress>("simulate " + garment.name, static_cast<int>(poses.size()));
   std::mutex progressMutex;
   forEachOnSimulators(first, body, garment, dressing, options, static_cast<int>(poses.size()),
-                      threadCount(threads, static_cast<int>(poses.size())), [&](GarmentSimulator& simulator, int k) {
+                      core::threadCount(threads, static_cast<int>(poses.size())),
+                      [&](GarmentSimulator& simulator, int k) {
                         stats[k] = simulator.simulate(poses[k]).stats;
                         if (progress) {
                           std::lock_guard<std::mutex> lock(progressMutex);

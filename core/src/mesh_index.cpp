@@ -8,9 +8,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <mutex>
-#include <unordered_map>
 
-#include "pixelcloth/core/edge_key.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/mesh.h"
 
@@ -27,10 +25,10 @@ Point toPoint(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
 }  // namespace
 
-/// What the inside test needs beyond the tree: the pseudo-normals of faces, edges and vertices (built on first use).
-struct PseudoNormals {
-  Eigen::MatrixX3d face, vertex;                            ///< unit face normals; angle-weighted vertex normals
-  std::unordered_map<std::uint64_t, Eigen::Vector3d> edge;  ///< sum of the normals of the faces around an edge
+/// What the inside test needs beyond the tree: the faces around each vertex (built on first use), from which the
+/// pseudo-normals of faces, edges and vertices are made when a query needs them.
+struct VertexFaces {
+  std::vector<int> start, faces;  ///< the faces of vertex v are faces[start[v] .. start[v + 1])
 };
 
 struct MeshIndex::Impl {
@@ -38,8 +36,8 @@ struct MeshIndex::Impl {
   Eigen::MatrixX3i F;
   std::vector<Triangle> triangles;
   Tree tree;
-  mutable std::once_flag pseudoOnce, smoothOnce;
-  mutable PseudoNormals pseudo;
+  mutable std::once_flag adjacencyOnce, smoothOnce;
+  mutable VertexFaces adjacency;
   mutable Eigen::MatrixX3d smooth;  ///< area-weighted vertex normals, built on the first smoothNormal query
 
   const Eigen::MatrixX3d& smoothNormals() const {
@@ -58,20 +56,50 @@ struct MeshIndex::Impl {
   }
   int faceOf(TriangleIterator it) const { return static_cast<int>(it - triangles.cbegin()); }
 
-  const PseudoNormals& pseudoNormals() const {
-    std::call_once(pseudoOnce, [this] {
-      pseudo.face = faceNormals(V, F);
-      pseudo.vertex = Eigen::MatrixX3d::Zero(V.rows(), 3);
+  const VertexFaces& vertexFaces() const {
+    std::call_once(adjacencyOnce, [this] {
+      adjacency.start.assign(V.rows() + 1, 0);
+      for (Eigen::Index i = 0; i < F.size(); ++i) ++adjacency.start[F.data()[i] + 1];
+      for (Eigen::Index v = 0; v < V.rows(); ++v) adjacency.start[v + 1] += adjacency.start[v];
+      adjacency.faces.resize(F.size());
+      std::vector<int> next(adjacency.start.begin(), adjacency.start.end() - 1);
       for (int f = 0; f < F.rows(); ++f)
-        for (int k = 0; k < 3; ++k) {
-          const Eigen::Vector3d p = V.row(F(f, k)), e1 = V.row(F(f, (k + 1) % 3)).transpose() - p,
-                                e2 = V.row(F(f, (k + 2) % 3)).transpose() - p;
-          pseudo.vertex.row(F(f, k)) += std::atan2(e1.cross(e2).norm(), e1.dot(e2)) * pseudo.face.row(f);
-          auto [it, fresh] = pseudo.edge.try_emplace(edgeKey(F(f, k), F(f, (k + 1) % 3)), Eigen::Vector3d::Zero());
-          it->second += pseudo.face.row(f).transpose();
-        }
+        for (int k = 0; k < 3; ++k) adjacency.faces[next[F(f, k)]++] = f;
     });
-    return pseudo;
+    return adjacency;
+  }
+
+  /// Unit normal of face f (zero for a degenerate face).
+  Eigen::Vector3d faceNormal(int f) const {
+    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double length = n.norm();
+    return length > 0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
+  }
+
+  /// The pseudo-normal of edge (a, b): the sum of the normals of the faces around it.
+  Eigen::Vector3d edgeNormal(int a, int b) const {
+    const VertexFaces& around = vertexFaces();
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for (int i = around.start[a]; i < around.start[a + 1]; ++i) {
+      const int f = around.faces[i];
+      if (F(f, 0) == b || F(f, 1) == b || F(f, 2) == b) n += faceNormal(f);
+    }
+    return n;
+  }
+
+  /// The pseudo-normal of vertex v: the normals of its faces weighted by their angles at v.
+  Eigen::Vector3d vertexNormal(int v) const {
+    const VertexFaces& around = vertexFaces();
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for (int i = around.start[v]; i < around.start[v + 1]; ++i) {
+      const int f = around.faces[i];
+      const int k = F(f, 0) == v ? 0 : F(f, 1) == v ? 1 : 2;
+      const Eigen::Vector3d p = V.row(v), e1 = V.row(F(f, (k + 1) % 3)).transpose() - p,
+                            e2 = V.row(F(f, (k + 2) % 3)).transpose() - p;
+      n += std::atan2(e1.cross(e2).norm(), e1.dot(e2)) * faceNormal(f);
+    }
+    return n;
   }
 };
 
@@ -109,9 +137,9 @@ bool MeshIndex::intersects(const Eigen::Vector3d& a, const Eigen::Vector3d& b) c
   return impl_->tree.do_intersect(Kernel::Segment_3(toPoint(a), toPoint(b)));
 }
 
-bool MeshIndex::inside(const Eigen::Vector3d& p) const {
-  const MeshHit h = closest(p);
-  const PseudoNormals& pseudo = impl_->pseudoNormals();
+bool MeshIndex::inside(const Eigen::Vector3d& p) const { return inside(p, closest(p)); }
+
+bool MeshIndex::inside(const Eigen::Vector3d& p, const MeshHit& h) const {
   const Eigen::MatrixX3i& F = impl_->F;
   // The pseudo-normal of the closest feature: the face's in its interior, the edge's on an edge, the vertex's at a
   // corner (Baerentzen and Aanaes 2005).
@@ -120,13 +148,13 @@ bool MeshIndex::inside(const Eigen::Vector3d& p) const {
     if (h.barycentric(k) <= 1e-12) ++zeros, zero = k;
     if (h.barycentric(k) > h.barycentric(corner)) corner = k;
   }
-  Eigen::Vector3d normal = pseudo.face.row(h.face).transpose();
-  if (zeros == 1) {
-    const auto it = pseudo.edge.find(edgeKey(F(h.face, (zero + 1) % 3), F(h.face, (zero + 2) % 3)));
-    if (it != pseudo.edge.end()) normal = it->second;
-  } else if (zeros == 2) {
-    normal = pseudo.vertex.row(F(h.face, corner)).transpose();
-  }
+  Eigen::Vector3d normal;
+  if (zeros == 1)
+    normal = impl_->edgeNormal(F(h.face, (zero + 1) % 3), F(h.face, (zero + 2) % 3));
+  else if (zeros == 2)
+    normal = impl_->vertexNormal(F(h.face, corner));
+  else
+    normal = impl_->faceNormal(h.face);
   return (p - h.point).dot(normal) < 0;
 }
 

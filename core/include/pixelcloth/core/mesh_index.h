@@ -34,6 +34,8 @@ class MeshIndex {
   /// For a closed, outward-oriented mesh: true where `p` is strictly inside, by the pseudo-normal test of Baerentzen
   /// and Aanaes (2005) at the closest point (exact for closed meshes).
   bool inside(const Eigen::Vector3d& p) const;
+  /// The same with `p`'s closest point `closest` (from closest(p)) already found.
+  bool inside(const Eigen::Vector3d& p, const MeshHit& closest) const;
   /// inside() for every row of `P` (#P x 3).
   std::vector<bool> inside(const Eigen::MatrixX3d& P) const;
   /// Unit normal at a point of face `face` with barycentric coordinates `barycentric`: the blend of the area-weighted

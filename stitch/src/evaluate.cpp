@@ -1,6 +1,8 @@
 #include "pixelcloth/stitch/evaluate.h"
 
 #include <algorithm>
+#include <limits>
+#include <memory>
 #include <sstream>
 
 #include "pixelcloth/core/error.h"
@@ -86,29 +88,51 @@ struct Tally {
 std::vector<Eigen::MatrixX3d> separatePositions(const std::vector<learn::NetworkPrediction>& predictions,
                                                 learn::OffsetSpace space, const garment::EmbeddedFrames& frames,
                                                 const Eigen::MatrixXf* base, Eigen::Index k) {
-  const Eigen::Index V = frames.origin.rows();
   std::vector<Eigen::MatrixX3d> out;
   for (const learn::NetworkPrediction& p : predictions) {
     PIXELCLOTH_CHECK(k >= 0 && k < p.values.rows(), "separate positions: row " << k << " of " << p.values.rows());
-    Eigen::MatrixX3f values = Eigen::MatrixX3f::Zero(V, 3);
-    if (base) values = *base;
-    for (size_t i = 0; i < p.vertices.size(); ++i)
-      values.row(p.vertices[i]) += p.values.block<1, 3>(k, 3 * static_cast<Eigen::Index>(i));
-    const Eigen::MatrixX3d all = learn::positionsFromValues(space, frames, values);
-    Eigen::MatrixX3d own(static_cast<Eigen::Index>(p.vertices.size()), 3);
-    for (size_t i = 0; i < p.vertices.size(); ++i) own.row(static_cast<Eigen::Index>(i)) = all.row(p.vertices[i]);
-    out.push_back(std::move(own));
+    // Only the network's own vertices, through their own frames.
+    const auto n = static_cast<Eigen::Index>(p.vertices.size());
+    garment::EmbeddedFrames own{Eigen::MatrixX3d(n, 3), Eigen::MatrixX3d(n, 3), Eigen::MatrixX3d(n, 3),
+                                Eigen::MatrixX3d(n, 3)};
+    Eigen::MatrixX3f values(n, 3);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const int v = p.vertices[i];
+      own.origin.row(i) = frames.origin.row(v);
+      own.t.row(i) = frames.t.row(v);
+      own.b.row(i) = frames.b.row(v);
+      own.n.row(i) = frames.n.row(v);
+      values.row(i) = p.values.block<1, 3>(k, 3 * i);
+      if (base) values.row(i) += base->row(v);
+    }
+    out.push_back(learn::positionsFromValues(space, own, values));
   }
   return out;
 }
 
 RowPredictions predictRows(const learn::TrainedModel& model, const learn::TrainingData& data,
-                           const std::vector<int>& rows, const Stitcher* stitcher) {
+                           const std::vector<int>& rows, const Stitcher* stitcher, bool measureSeamGaps) {
   checkComplete(model, data);
   RowPredictions out;
+  std::unique_ptr<SeamLayout> layout;
+  if (measureSeamGaps && model.architecture() == learn::Architecture::Patch)
+    layout = std::make_unique<SeamLayout>(data.garment);
   for (size_t first = 0; first < rows.size(); first += 16) {
     const std::vector<int> chunk(rows.begin() + first, rows.begin() + std::min(rows.size(), first + 16));
-    stitchChunk(stitcher, predictChunk(model, data, chunk), data, chunk, out);
+    const std::vector<learn::NetworkPrediction> predictions = predictChunk(model, data, chunk);
+    for (size_t k = 0; measureSeamGaps && k < chunk.size(); ++k) {
+      if (!layout) {
+        out.seamGapCm.push_back(std::numeric_limits<double>::quiet_NaN());
+        continue;
+      }
+      const std::vector<Eigen::MatrixX3d> separate =
+          separatePositions(predictions, data.space, data.frames[chunk[k]],
+                            data.residual() ? &data.base[chunk[k]] : nullptr, static_cast<Eigen::Index>(k));
+      std::vector<PredictedPositions> parts;
+      for (size_t p = 0; p < predictions.size(); ++p) parts.push_back({&predictions[p].vertices, separate[p]});
+      out.seamGapCm.push_back(meanSeamGapCm(*layout, parts));
+    }
+    stitchChunk(stitcher, predictions, data, chunk, out);
   }
   return out;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -29,6 +30,25 @@ std::vector<int> rings(const std::vector<std::vector<int>>& adjacency, const std
 
 nlohmann::json meanOrNull(double sum, long long count) {
   return count > 0 ? nlohmann::json(sum / static_cast<double>(count)) : nlohmann::json();
+}
+
+/// Per vertex: the largest distance between two networks' predictions (the diameter of the predicted points, metres),
+/// and how many networks predict it.
+void vertexGaps(const std::vector<PredictedPositions>& separate, int V, Eigen::VectorXd& gap, Eigen::VectorXi& count) {
+  gap = Eigen::VectorXd::Zero(V);
+  count = Eigen::VectorXi::Zero(V);
+  std::vector<std::vector<Eigen::RowVector3d>> points(V);
+  for (const PredictedPositions& p : separate) {
+    PIXELCLOTH_CHECK(p.vertices != nullptr && p.positions.rows() == static_cast<Eigen::Index>(p.vertices->size()),
+                     "seams: a prediction's positions do not match its vertices");
+    for (size_t i = 0; i < p.vertices->size(); ++i) {
+      const int v = (*p.vertices)[i];
+      PIXELCLOTH_CHECK(v >= 0 && v < V, "seams: vertex " << v << " of a garment of " << V);
+      for (const Eigen::RowVector3d& q : points[v]) gap(v) = std::max(gap(v), (q - p.positions.row(i)).norm());
+      points[v].push_back(p.positions.row(static_cast<Eigen::Index>(i)));
+      ++count(v);
+    }
+  }
 }
 
 }  // namespace
@@ -70,6 +90,20 @@ SeamLayout::SeamLayout(const garment::Garment& garment)
     if (!near.count(v)) interior_.push_back(v);
 }
 
+double meanSeamGapCm(const SeamLayout& layout, const std::vector<PredictedPositions>& separate) {
+  Eigen::VectorXd gap;
+  Eigen::VectorXi count;
+  vertexGaps(separate, layout.numVertices(), gap, count);
+  double sum = 0;
+  int shared = 0;
+  for (int v : layout.cageVertices())
+    if (count(v) >= 2) {
+      sum += 100 * gap(v);
+      ++shared;
+    }
+  return shared > 0 ? sum / shared : std::numeric_limits<double>::quiet_NaN();
+}
+
 SeamMetrics::SeamMetrics(const SeamLayout& layout)
     : layout_(&layout), curves_(layout.curves().size()), shared_(layout.curves().size(), 0) {}
 
@@ -78,22 +112,9 @@ void SeamMetrics::add(const std::vector<PredictedPositions>& separate, const Eig
   const int V = layout_->numVertices();
   PIXELCLOTH_CHECK(blended.rows() == V && truth.rows() == V,
                    "seams: " << blended.rows() << " blended and " << truth.rows() << " true vertices, expected " << V);
-  // Per vertex: the largest distance between two networks' predictions (the diameter of the predicted points), and
-  // how many networks predict it.
-  Eigen::VectorXd gap = Eigen::VectorXd::Zero(V);
-  Eigen::VectorXi count = Eigen::VectorXi::Zero(V);
-  std::vector<std::vector<Eigen::RowVector3d>> points(V);
-  for (const PredictedPositions& p : separate) {
-    PIXELCLOTH_CHECK(p.vertices != nullptr && p.positions.rows() == static_cast<Eigen::Index>(p.vertices->size()),
-                     "seams: a prediction's positions do not match its vertices");
-    for (size_t i = 0; i < p.vertices->size(); ++i) {
-      const int v = (*p.vertices)[i];
-      PIXELCLOTH_CHECK(v >= 0 && v < V, "seams: vertex " << v << " of a garment of " << V);
-      for (const Eigen::RowVector3d& q : points[v]) gap(v) = std::max(gap(v), (q - p.positions.row(i)).norm());
-      points[v].push_back(p.positions.row(static_cast<Eigen::Index>(i)));
-      ++count(v);
-    }
-  }
+  Eigen::VectorXd gap;
+  Eigen::VectorXi count;
+  vertexGaps(separate, V, gap, count);
   const Eigen::VectorXd error = 100 * (blended - truth).rowwise().norm();
   const Eigen::MatrixX3d nBlended = core::faceNormals(blended, layout_->faces()),
                          nTruth = core::faceNormals(truth, layout_->faces());

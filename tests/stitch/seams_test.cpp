@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "pixelcloth/core/mesh.h"
@@ -83,6 +84,31 @@ TEST(Seams, TheGapIsTheDistanceBetweenTwoPredictionsOfAVertex) {
       EXPECT_DOUBLE_EQ(c["gap_cm"]["max"].get<double>(), 0.0) << c["name"];
     }
   }
+}
+
+// One garment's seam gap (a frame of a sequence): 0 for agreeing crops; with patch 0 1 cm off, 1 cm on the curve
+// vertices it shares and 0 on the others, so the mean lies strictly between; NaN for a single whole-garment prediction.
+TEST(Seams, TheSeamGapOfOneGarmentIsTheMeanGapOverSharedCurveVertices) {
+  const ps::SeamLayout layout(tshirt());
+  const Eigen::MatrixX3d truth = tshirt().mesh.V;
+  std::vector<ps::PredictedPositions> crops = cropsOf(truth);
+  EXPECT_DOUBLE_EQ(ps::meanSeamGapCm(layout, crops), 0.0);
+  crops[0].positions.col(2).array() += 0.01;
+  const std::set<int> zero(cropVertices()[0].begin(), cropVertices()[0].end());
+  std::vector<int> count(truth.rows(), 0);
+  for (const std::vector<int>& crop : cropVertices())
+    for (int v : crop) ++count[v];
+  int shared = 0, moved = 0;
+  for (int v : layout.cageVertices())
+    if (count[v] >= 2) {
+      ++shared;
+      moved += static_cast<int>(zero.count(v));
+    }
+  ASSERT_GT(moved, 0);
+  EXPECT_NEAR(ps::meanSeamGapCm(layout, crops), static_cast<double>(moved) / shared, 1e-9);
+  std::vector<int> all(truth.rows());
+  for (int v = 0; v < static_cast<int>(all.size()); ++v) all[v] = v;
+  EXPECT_TRUE(std::isnan(ps::meanSeamGapCm(layout, {{&all, truth}})));
 }
 
 TEST(Seams, AStepAcrossOneCurveJumpsThereAndASharedSmoothBendDoesNot) {

@@ -19,14 +19,18 @@ struct RowPredictions {
   std::vector<int> rows;
   std::vector<Eigen::MatrixX3f> values;     ///< per row: #V x 3 in the model's space, the base added
   std::vector<Eigen::MatrixX3d> positions;  ///< per row: #V x 3, metres
+  /// Per row, when predictRows measured it: meanSeamGapCm of the networks' own predictions before blending (NaN for
+  /// a whole-garment model); empty otherwise.
+  std::vector<double> seamGapCm;
 };
 
 /// Predicts `rows` of `data` (loaded in the model's space, with its base folder in residual mode): the networks'
 /// outputs assembled by `stitcher` (nullptr: the per-vertex mean), the base added, then the stitcher's filter or
 /// blender, positions through the row's posed frames. Throws InputError naming the missing patches of an incomplete
-/// patch model.
+/// patch model. With `measureSeamGaps`, also each row's seam gap (RowPredictions::seamGapCm).
 RowPredictions predictRows(const learn::TrainedModel& model, const learn::TrainingData& data,
-                           const std::vector<int>& rows, const Stitcher* stitcher = nullptr);
+                           const std::vector<int>& rows, const Stitcher* stitcher = nullptr,
+                           bool measureSeamGaps = false);
 
 /// Each network's own positions of the vertices it covers, before blending, for batch row `k` of `predictions`: its
 /// values (plus `base`, #V x 3 in `space`, when not null) through the posed `frames`. One matrix per prediction, its

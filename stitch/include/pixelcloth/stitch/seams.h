@@ -83,6 +83,10 @@ class SeamMetrics {
   int samples_ = 0;
 };
 
+/// The seam gap of one garment: the mean, over the cage-curve vertices that two or more of `separate` predict, of the
+/// largest distance between their predictions, cm. NaN when no curve vertex is predicted twice (a whole-garment model).
+double meanSeamGapCm(const SeamLayout& layout, const std::vector<PredictedPositions>& separate);
+
 /// The fold angle (degrees) between two triangles' unit normals, rows `pair` of `faceNormals` (core::faceNormals).
 double foldAngleDeg(const Eigen::MatrixX3d& faceNormals, const std::array<int, 2>& pair);
 

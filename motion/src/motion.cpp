@@ -323,6 +323,18 @@ std::vector<Eigen::MatrixX3d> withRootMotion(const std::vector<Eigen::MatrixX3d>
   return out;
 }
 
+std::vector<Eigen::MatrixX3d> withoutRootMotion(const std::vector<Eigen::MatrixX3d>& frames, const Motion& motion,
+                                                const Eigen::Vector3d& rootPosition) {
+  PIXELCLOTH_CHECK(static_cast<int>(frames.size()) == motion.frames(),
+                   "root motion: " << frames.size() << " frames for a motion of " << motion.frames());
+  std::vector<Eigen::MatrixX3d> out(frames.size());
+  for (size_t f = 0; f < frames.size(); ++f) {
+    const Eigen::RowVector3d shift = rootPosition.transpose() + motion.rootTranslations.row(f);
+    out[f] = ((frames[f].rowwise() - shift) * motion.rootRotations[f]).rowwise() + rootPosition.transpose();
+  }
+  return out;
+}
+
 void writeMotion(const fs::path& folder, const Motion& motion) {
   PIXELCLOTH_CHECK(motion.frames() > 0, folder.string() << ": a motion of no frames");
   std::vector<float> poses;

@@ -12,13 +12,16 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "pixelcloth/body/body.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/npy.h"
 #include "pixelcloth/motion/glb.h"
 #include "pixelcloth/motion/sequence.h"
+#include "pixelcloth/motion/trajectories.h"
 #include "support/body_fixtures.h"
 #include "support/test_util.h"
 
@@ -507,4 +510,101 @@ TEST(Sequence, ABodyAloneIsAnAnimatedGlbToo) {
   pm::writeAnimatedGlb(dir / "body.glb", scene);
   const pm::Clip clip = pm::readClip(dir / "body.glb");
   EXPECT_EQ(clip.frames(), frames);
+}
+
+// Marker trajectories as capture systems export them: NPY in either layout and precision, CSV with a header, blanks
+// and nan for lost markers; the damaged ones refused naming the file and where.
+TEST(Trajectories, NpyAndCsvReadBackWithLostMarkersAndBadOnesAreRefused) {
+  const fs::path dir = pixelcloth::testing::freshDir("trajectories");
+  const double nan = std::nan("");
+  pm::MarkerTrajectories written;
+  for (int f = 0; f < 3; ++f) written.frames.push_back(Eigen::MatrixX3d::Random(4, 3));
+  written.frames[1].row(2).setConstant(nan);  // lost in frame 2
+  pm::writeMarkerTrajectories(dir / "t.npy", written);
+  auto same = [&](const pm::MarkerTrajectories& read) {
+    ASSERT_EQ(read.numFrames(), 3);
+    ASSERT_EQ(read.markers(), 4);
+    for (int f = 0; f < 3; ++f)
+      for (int m = 0; m < 4; ++m)
+        if (f == 1 && m == 2)
+          EXPECT_TRUE(read.frames[f].row(m).array().isNaN().all());
+        else
+          EXPECT_LT((read.frames[f].row(m) - written.frames[f].row(m)).norm(), 1e-6) << f << " " << m;
+  };
+  same(pm::readMarkerTrajectories(dir / "t.npy", 4, "m.json"));
+
+  // (frames, 3M) float64, as numpy.savetxt users reshape theirs.
+  std::vector<double> flat;
+  for (const Eigen::MatrixX3d& frame : written.frames)
+    for (int m = 0; m < 4; ++m)
+      for (int c = 0; c < 3; ++c) flat.push_back(frame(m, c));
+  pixelcloth::core::writeNpy(dir / "flat.npy", flat, {3, 12});
+  same(pm::readMarkerTrajectories(dir / "flat.npy", 4, "m.json"));
+
+  // CSV: a header, a comment, the lost marker as blanks in one frame.
+  std::ostringstream csv;
+  csv << "# exported\n";
+  for (int m = 0; m < 4; ++m) csv << (m ? "," : "") << "m" << m << "_x,m" << m << "_y,m" << m << "_z";
+  csv << "\n" << std::setprecision(17);
+  for (int f = 0; f < 3; ++f) {
+    for (int m = 0; m < 4; ++m)
+      for (int c = 0; c < 3; ++c) {
+        csv << (m || c ? "," : "");
+        if (f != 1 || m != 2)
+          csv << written.frames[f](m, c);
+        else if (c == 0)
+          csv << "NaN";
+      }
+    csv << "\n";
+  }
+  pixelcloth::core::writeTextAtomically(dir / "t.csv", csv.str());
+  same(pm::readMarkerTrajectories(dir / "t.csv", 4, "m.json"));
+
+  auto refusal = [&](const std::string& name, int markers = 4) {
+    return inputErrorOf([&] { pm::readMarkerTrajectories(dir / name, markers, "m.json"); });
+  };
+  EXPECT_NE(refusal("t.npy", 5).find("expected (frames, 5, 3)"), std::string::npos) << refusal("t.npy", 5);
+  EXPECT_NE(refusal("t.csv", 5).find("line 3: 12 columns, expected 15"), std::string::npos) << refusal("t.csv", 5);
+  EXPECT_NE(refusal("missing.npy").find("missing.npy"), std::string::npos);
+  pixelcloth::core::writeTextAtomically(dir / "t.txt", "1,2,3\n");
+  EXPECT_NE(refusal("t.txt").find("expected marker trajectories as .npy"), std::string::npos);
+  pm::MarkerTrajectories partial = written;
+  partial.frames[2](3, 1) = nan;
+  pm::writeMarkerTrajectories(dir / "partial.npy", partial);
+  EXPECT_NE(refusal("partial.npy").find("frame 3, marker 4 has 1 of its 3 coordinates NaN"), std::string::npos)
+      << refusal("partial.npy");
+  partial.frames[2](3, 1) = std::numeric_limits<double>::infinity();
+  pm::writeMarkerTrajectories(dir / "inf.npy", partial);
+  EXPECT_NE(refusal("inf.npy").find("frame 3, marker 4 is infinite"), std::string::npos) << refusal("inf.npy");
+  pixelcloth::core::writeTextAtomically(dir / "empty.csv", "x,y,z\n");
+  EXPECT_NE(refusal("empty.csv", 1).find("no frames"), std::string::npos);
+  pixelcloth::core::writeTextAtomically(dir / "word.csv", "1,2,3\n1,two,3\n");
+  EXPECT_NE(refusal("word.csv", 1).find("line 2: expected 3 comma-separated numbers"), std::string::npos);
+  std::string bytes = pixelcloth::core::readTextFile(dir / "t.npy");
+  pixelcloth::core::writeTextAtomically(dir / "cut.npy", bytes.substr(0, bytes.size() - 5));
+  EXPECT_NE(refusal("cut.npy").find("cut.npy"), std::string::npos);
+}
+
+// Positions in the clip's world (a capture's markers) brought into the fixed-root frame are where the root motion
+// took them from; a lost marker stays lost.
+TEST(Motion, RootMotionUndoneIsTheInverseOfRootMotion) {
+  pm::Motion motion;
+  motion.fps = 30;
+  for (int f = 0; f < 3; ++f) {
+    motion.poses.emplace_back();
+    motion.rootRotations.push_back(axisRotation(1, 20.0 * f) * axisRotation(0, 5.0 * f));
+  }
+  motion.rootTranslations = Eigen::MatrixX3d::Random(3, 3);
+  const Eigen::Vector3d root(0.1, 1.0, -0.05);
+  std::vector<Eigen::MatrixX3d> frames;
+  for (int f = 0; f < 3; ++f) frames.push_back(Eigen::MatrixX3d::Random(6, 3));
+  const std::vector<Eigen::MatrixX3d> world = pm::withRootMotion(frames, motion, root);
+  EXPECT_GT((world[2] - frames[2]).norm(), 0.1);
+  const std::vector<Eigen::MatrixX3d> back = pm::withoutRootMotion(world, motion, root);
+  for (int f = 0; f < 3; ++f) EXPECT_LT((back[f] - frames[f]).cwiseAbs().maxCoeff(), 1e-12) << f;
+  std::vector<Eigen::MatrixX3d> lost = world;
+  lost[1].row(4).setConstant(std::nan(""));
+  const std::vector<Eigen::MatrixX3d> lostBack = pm::withoutRootMotion(lost, motion, root);
+  EXPECT_TRUE(lostBack[1].row(4).array().isNaN().all());
+  EXPECT_LT((lostBack[1].row(3) - frames[1].row(3)).norm(), 1e-12);
 }

@@ -80,6 +80,10 @@ Motion retarget(const Clip& clip, const body::Skeleton& skeleton, const JointMap
 /// clip's root motion: turned about `rootPosition` (our skeleton's root at rest) and displaced, as the clip moves.
 std::vector<Eigen::MatrixX3d> withRootMotion(const std::vector<Eigen::MatrixX3d>& frames, const Motion& motion,
                                              const Eigen::Vector3d& rootPosition);
+/// The inverse of withRootMotion: positions in the clip's world (e.g. captured markers; NaN rows stay NaN) brought
+/// into the fixed-root frame.
+std::vector<Eigen::MatrixX3d> withoutRootMotion(const std::vector<Eigen::MatrixX3d>& frames, const Motion& motion,
+                                                const Eigen::Vector3d& rootPosition);
 
 /// Writes motion.json and poses.npy into `folder` (poses.npy first, motion.json last, each atomically).
 void writeMotion(const std::filesystem::path& folder, const Motion& motion);

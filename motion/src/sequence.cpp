@@ -1,5 +1,6 @@
 #include "pixelcloth/motion/sequence.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/mesh_index.h"
 #include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/core/parallel.h"
 #include "pixelcloth/core/progress.h"
 
 namespace pixelcloth::motion {
@@ -104,17 +106,63 @@ std::vector<Eigen::MatrixX3f> readPc2(const fs::path& path) {
 
 void writeObjSequence(const fs::path& folder, const std::string& stem, const core::Mesh& mesh,
                       const std::vector<Eigen::MatrixX3d>& frames) {
-  core::Mesh posed = mesh;
-  for (size_t f = 0; f < frames.size(); ++f) {
+  if (frames.empty()) return;
+  for (size_t f = 0; f < frames.size(); ++f)
+    PIXELCLOTH_CHECK(frames[f].rows() == mesh.V.rows() && frames[f].allFinite(),
+                     (folder / stem).string()
+                         << ": frame " << f << " has " << frames[f].rows() << " positions or some not finite; expected "
+                         << mesh.V.rows() << " finite ones, one per vertex");
+  auto pathOf = [&](size_t f) {
     char name[32];
     std::snprintf(name, sizeof(name), "_%04zu.obj", f);
-    posed.V = frames[f];
-    core::writeMesh(folder / (stem + name), posed);
+    return folder / (stem + name);
+  };
+  // The first frame through the OBJ writer (OpenMesh's); every other frame is that file with its vertex lines
+  // replaced, since the faces and texture coordinates do not change.
+  core::Mesh posed = mesh;
+  posed.V = frames.front();
+  core::writeMesh(pathOf(0), posed);
+  const std::string first = core::readTextFile(pathOf(0));
+  std::vector<size_t> starts;  // where each "v " line starts
+  for (size_t at = 0; at < first.size(); at = first.find('\n', at) + 1) {
+    if (first.compare(at, 2, "v ") == 0) starts.push_back(at);
+    if (first.find('\n', at) == std::string::npos) break;
   }
+  const auto V = static_cast<size_t>(mesh.V.rows());
+  bool contiguous = starts.size() == V;
+  for (size_t i = 1; contiguous && i < V; ++i) contiguous = first.find('\n', starts[i - 1]) + 1 == starts[i];
+  if (!contiguous) {  // a layout this shortcut does not know: the writer for every frame
+    for (size_t f = 1; f < frames.size(); ++f) {
+      posed.V = frames[f];
+      core::writeMesh(pathOf(f), posed);
+    }
+    return;
+  }
+  const std::string head = first.substr(0, starts.front());
+  const std::string tail = first.substr(first.find('\n', starts.back()) + 1);
+  core::parallelFor(static_cast<int>(frames.size()) - 1, 0, [&](int k) {
+    const Eigen::MatrixX3d& P = frames[k + 1];
+    std::string text = head;
+    text.reserve(head.size() + tail.size() + V * 40);
+    char buffer[32];
+    for (size_t i = 0; i < V; ++i) {
+      text += "v";
+      for (int c = 0; c < 3; ++c) {
+        const auto end = std::to_chars(buffer, buffer + sizeof(buffer), P(static_cast<Eigen::Index>(i), c),
+                                       std::chars_format::general, 9);
+        text += ' ';
+        text.append(buffer, end.ptr);
+      }
+      text += '\n';
+    }
+    text += tail;
+    core::writeTextAtomically(pathOf(k + 1), text);
+  });
 }
 
 double TemporalMetrics::meanGarmentJitterCm() const { return mean(garmentJitterCm); }
 double TemporalMetrics::meanBodyJitterCm() const { return mean(bodyJitterCm); }
+double TemporalMetrics::meanSeamGapCm() const { return mean(seamGapCm); }
 int TemporalMetrics::framesWithInside() const {
   int n = 0;
   for (int count : insideVertices) n += count > 0;
@@ -129,6 +177,10 @@ nlohmann::json TemporalMetrics::toJson() const {
   };
   double deepest = 0;
   for (double d : maxDepthCm) deepest = std::max(deepest, d);
+  const double gap = meanSeamGapCm();
+  nlohmann::json seamGap;  // null when not measured
+  if (!seamGapCm.empty())
+    seamGap = {{"mean", std::isfinite(gap) ? nlohmann::json(gap) : nlohmann::json()}, {"per_frame", finite(seamGapCm)}};
   return {{"fps", fps},
           {"frames", insideVertices.size()},
           {"garment_jitter_cm", {{"mean", meanGarmentJitterCm()}, {"per_frame", finite(garmentJitterCm)}}},
@@ -137,7 +189,8 @@ nlohmann::json TemporalMetrics::toJson() const {
            {{"frames_with_any", framesWithInside()},
             {"max_depth_cm", deepest},
             {"vertices_per_frame", insideVertices},
-            {"max_depth_cm_per_frame", maxDepthCm}}}};
+            {"max_depth_cm_per_frame", maxDepthCm}}},
+          {"seam_gap_cm", seamGap}};
 }
 
 TemporalMetrics temporalMetrics(const std::vector<Eigen::MatrixX3d>& garment, const std::vector<Eigen::MatrixX3d>& body,
@@ -148,21 +201,39 @@ TemporalMetrics temporalMetrics(const std::vector<Eigen::MatrixX3d>& garment, co
   metrics.fps = fps;
   metrics.garmentJitterCm = jitterCm(garment);
   metrics.bodyJitterCm = jitterCm(body);
-  core::Progress progress("inside the body", static_cast<std::int64_t>(garment.size()));
-  for (size_t f = 0; f < garment.size(); ++f) {
-    const core::MeshIndex index(body[f], bodyFaces);
-    const std::vector<bool> inside = index.inside(garment[f]);
-    int count = 0;
-    double deepest = 0;
-    for (Eigen::Index i = 0; i < garment[f].rows(); ++i)
-      if (inside[i]) {
-        ++count;
-        deepest = std::max(deepest, 100 * index.closest(garment[f].row(i).transpose()).distance);
+  const int frames = static_cast<int>(garment.size());
+  metrics.insideVertices.assign(frames, 0);
+  metrics.maxDepthCm.assign(frames, 0);
+  core::Progress progress("inside the body", frames);
+  // Contiguous runs of frames per thread, so that each query starts from the closest point of the frame before (the
+  // body moves little between frames): CGAL's search then prunes early.
+  const int threads = core::threadCount(0, frames);
+  core::parallelFor(threads, threads, [&](int t) {
+    std::vector<core::MeshHit> previous;
+    for (int f = t * frames / threads; f < (t + 1) * frames / threads; ++f) {
+      const core::MeshIndex index(body[f], bodyFaces);
+      const Eigen::MatrixX3d& P = garment[f];
+      previous.resize(P.rows());
+      for (Eigen::Index i = 0; i < P.rows(); ++i) {
+        const Eigen::Vector3d p = P.row(i).transpose();
+        core::MeshHit hit;
+        if (previous[i].face < 0) {
+          hit = index.closest(p);
+        } else {
+          core::MeshHit near = previous[i];
+          near.point = Eigen::Vector3d::Zero();
+          for (int k = 0; k < 3; ++k)
+            near.point += near.barycentric(k) * body[f].row(bodyFaces(near.face, k)).transpose();
+          hit = index.closest(p, near);
+        }
+        previous[i] = hit;
+        if (!index.inside(p, hit)) continue;
+        ++metrics.insideVertices[f];
+        metrics.maxDepthCm[f] = std::max(metrics.maxDepthCm[f], 100 * hit.distance);
       }
-    metrics.insideVertices.push_back(count);
-    metrics.maxDepthCm.push_back(deepest);
-    progress.advance();
-  }
+      progress.advance();
+    }
+  });
   progress.finish();
   return metrics;
 }

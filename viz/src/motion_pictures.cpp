@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/image.h"
 #include "pixelcloth/viz/draw.h"
 #include "pixelcloth/viz/line_chart.h"
 #include "pixelcloth/viz/previews.h"
@@ -61,7 +62,25 @@ core::RgbImage renderTemporalMetrics(const motion::TemporalMetrics& metrics) {
   }
   LineChart depth{"garment inside the body", "time, s", "vertices", {inside}};
   charts.push_back(renderLineChart(depth, 640, 320));
+  ChartSeries gap{"patch networks apart on the cage curves", {}, {}};
+  for (int f = 0; f < static_cast<int>(metrics.seamGapCm.size()); ++f)
+    if (std::isfinite(metrics.seamGapCm[f])) {
+      gap.x.push_back(f / metrics.fps);
+      gap.y.push_back(metrics.seamGapCm[f]);
+    }
+  if (!gap.x.empty()) {
+    LineChart seams{"seam gap before blending", "time, s", "cm, mean over curve vertices", {gap}};
+    charts.push_back(renderLineChart(seams, 640, 320));
+  }
   return contactSheet(charts, static_cast<int>(charts.size()));
+}
+
+std::vector<std::string> writeSequencePictures(const std::filesystem::path& out, const Eigen::MatrixX3i& bodyFaces,
+                                               const core::Mesh& garment, const eval::MotionPrediction& sequence) {
+  core::writePng(out / "strip.png",
+                 renderGarmentStrip(bodyFaces, sequence.body, garment, sequence.garment, sequence.fps));
+  core::writePng(out / "temporal.png", renderTemporalMetrics(sequence.metrics));
+  return {"strip.png", "temporal.png"};
 }
 
 }  // namespace pixelcloth::viz

@@ -35,9 +35,13 @@ struct TemporalMetrics {
   std::vector<double> garmentJitterCm, bodyJitterCm;
   std::vector<int> insideVertices;  ///< garment vertices inside the closed body
   std::vector<double> maxDepthCm;   ///< the deepest of them, cm (0 when none)
+  /// Per frame, where the garment came from patch networks: the mean gap between their predictions of the cage-curve
+  /// vertices before blending (stitch::meanSeamGapCm), cm. Empty when not measured, NaN for a frame without it.
+  std::vector<double> seamGapCm;
 
   double meanGarmentJitterCm() const;
   double meanBodyJitterCm() const;
+  double meanSeamGapCm() const;  ///< NaN when not measured
   int framesWithInside() const;  ///< frames where some garment vertex is inside the body
   nlohmann::json toJson() const;
 };

@@ -4,10 +4,13 @@
 // measures against the frame.
 
 #include <Eigen/Core>
+#include <filesystem>
+#include <string>
 #include <vector>
 
 #include "pixelcloth/core/image.h"
 #include "pixelcloth/core/mesh.h"
+#include "pixelcloth/eval/motion_prediction.h"
 #include "pixelcloth/motion/sequence.h"
 
 namespace pixelcloth::viz {
@@ -19,7 +22,13 @@ core::RgbImage renderGarmentStrip(const Eigen::MatrixX3i& bodyFaces, const std::
                                   const core::Mesh& garment, const std::vector<Eigen::MatrixX3d>& garmentFrames,
                                   double fps, int count = 8);
 
-/// Two charts against time: the garment's and the body's jitter, and the garment vertices inside the body.
+/// Charts against time: the garment's and the body's jitter, the garment vertices inside the body, and the seam gap
+/// when it was measured.
 core::RgbImage renderTemporalMetrics(const motion::TemporalMetrics& metrics);
+
+/// Writes `sequence`'s pictures into `out`: strip.png (renderGarmentStrip of the body, faces `bodyFaces`, and the
+/// garment, faces of `garment`) and temporal.png (renderTemporalMetrics). Returns their names.
+std::vector<std::string> writeSequencePictures(const std::filesystem::path& out, const Eigen::MatrixX3i& bodyFaces,
+                                               const core::Mesh& garment, const eval::MotionPrediction& sequence);
 
 }  // namespace pixelcloth::viz

@@ -67,18 +67,9 @@ void runPredictMotion(const PredictArgs& args) {
   const eval::MotionPrediction result = eval::predictMotion(
       inputs, stitchers.front(), clip, args.out,
       {{"model", args.model}, {"motion", args.motion}, {"stitch", args.stitch.modes}, {"engine", args.engine}});
-  const fs::path out = args.out;
-  core::writePng(out / "strip.png",
-                 viz::renderGarmentStrip(data::loadDatasetBody(inputs.data.folder).mesh.F, result.body,
-                                         inputs.data.garment.mesh, result.garment, clip.fps));
-  core::writePng(out / "temporal.png", viz::renderTemporalMetrics(result.metrics));
-  std::cout << std::fixed << std::setprecision(3) << "predict: " << clip.frames() << " frames at " << clip.fps
-            << " fps in " << result.predictSeconds << " s (" << 1000 * result.predictSeconds / clip.frames()
-            << " ms a frame); garment jitter " << result.metrics.meanGarmentJitterCm() << " cm (body "
-            << result.metrics.meanBodyJitterCm() << " cm); garment inside the body in "
-            << result.metrics.framesWithInside() << " frames -> " << out.string()
-            << "/{animation.glb, frames/garment_NNNN.obj, garment.obj, body.obj, garment.pc2, body.pc2, strip.png, "
-               "temporal.png, metrics.json}\n";
+  viz::writeSequencePictures(args.out, data::loadDatasetBody(inputs.data.folder).mesh.F, inputs.data.garment.mesh,
+                             result);
+  std::cout << "predict: " << sequenceSummary(result, args.out) << "\n";
 }
 
 void runPredict(const PredictArgs& args) {

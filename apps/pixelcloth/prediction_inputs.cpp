@@ -1,11 +1,14 @@
 #include "prediction_inputs.h"
 
 #include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include "pixelcloth/body/pose_io.h"
+#include "pixelcloth/cage/markers.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
-#include "pixelcloth/cage/markers.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/recon/capture_base.h"
 #include "verbs.h"
@@ -67,6 +70,20 @@ learn::PredictionInputs posePredictionInputs(const fs::path& modelFolder, const 
                                                        << modelFolder.string() << " takes the pose alone");
   }
   return out;
+}
+
+std::string sequenceSummary(const eval::MotionPrediction& sequence, const fs::path& out) {
+  const motion::TemporalMetrics& m = sequence.metrics;
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(3) << sequence.frames << " frames at " << sequence.fps << " fps in "
+       << sequence.predictSeconds << " s (" << 1000 * sequence.predictSeconds / sequence.frames
+       << " ms a frame); garment jitter " << m.meanGarmentJitterCm() << " cm (body " << m.meanBodyJitterCm()
+       << " cm); ";
+  if (std::isfinite(m.meanSeamGapCm())) text << "seam gap " << m.meanSeamGapCm() << " cm; ";
+  text << "garment inside the body in " << m.framesWithInside() << " frames -> " << out.string() << "/{";
+  for (const std::string& file : sequence.files) text << file << ", ";
+  text << "strip.png, temporal.png}";
+  return text.str();
 }
 
 }  // namespace pixelcloth::apps

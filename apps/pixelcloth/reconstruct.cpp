@@ -2,6 +2,7 @@
 // "Key-point-to-cage spline solver").
 #include "pixelcloth/recon/reconstruct.h"
 
+#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -17,10 +18,17 @@
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/data/dataset.h"
+#include "pixelcloth/eval/motion_prediction.h"
+#include "pixelcloth/motion/motion.h"
+#include "pixelcloth/motion/sequence.h"
+#include "pixelcloth/motion/trajectories.h"
 #include "pixelcloth/recon/base.h"
+#include "pixelcloth/viz/motion_pictures.h"
 #include "pixelcloth/viz/pictures.h"
+#include "prediction_inputs.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -38,8 +46,27 @@ struct MarkersArgs {
   std::uint64_t seed = 0;
   std::string out;
   std::string poseOut;
+  std::string pc2, trajectories;
 };
 
+/// The sequence form of markers: the garment's markers on every frame of a point cache, as trajectories with noise
+/// and dropout drawn per frame (seeded by --seed and the frame).
+void runMarkersOfSequence(const MarkersArgs& args, const cage::MarkerOptions& options, const garment::Garment& garment,
+                          const cage::CaptureOptions& capture) {
+  const cage::Cage cage = cage::garmentCage(garment);
+  const cage::MarkerSet definition = cage::defineMarkers(garment, cage, options);
+  const std::vector<Eigen::MatrixX3f> frames = motion::readPc2(args.pc2);
+  PIXELCLOTH_CHECK(frames.front().rows() == garment.mesh.numVertices(),
+                   args.pc2 << ": " << frames.front().rows() << " points a frame, expected the "
+                            << garment.mesh.numVertices() << " vertices of the " << garment.name);
+  std::vector<Eigen::MatrixX3d> positions;
+  for (const Eigen::MatrixX3f& frame : frames) positions.push_back(frame.cast<double>());
+  const motion::MarkerTrajectories trajectories = eval::markerTrajectories(definition, cage, positions, capture);
+  cage::writeMarkers(args.out, definition);
+  motion::writeMarkerTrajectories(args.trajectories, trajectories);
+  PIXELCLOTH_INFO("markers: " << definition.markers.size() << " markers in " << frames.size() << " frames of "
+                              << args.pc2 << " -> " << args.out << ", " << args.trajectories);
+}
 
 void runMarkers(const MarkersArgs& args) {
   cage::MarkerOptions options;
@@ -47,6 +74,13 @@ void runMarkers(const MarkersArgs& args) {
   options.validate();
   cage::CaptureOptions capture{args.noiseCm / 100, args.dropout, args.seed};
   capture.validate();
+  PIXELCLOTH_CHECK(args.pc2.empty() == args.trajectories.empty(),
+                   "markers: --pc2 and --trajectories go together (the point cache read, the trajectories written)");
+  PIXELCLOTH_CHECK(args.pc2.empty() || args.dataset.empty(), "markers: --pc2 and --dataset exclude each other");
+  if (!args.pc2.empty()) {
+    const garment::Garment garment = garment::resolveGarment(args.garment, "markers --garment");
+    return runMarkersOfSequence(args, options, garment, capture);
+  }
   if (args.dataset.empty()) {
     const garment::Garment garment = garment::resolveGarment(args.garment, "markers --garment");
     cage::writeMarkers(args.out, cage::defineMarkers(garment, cage::garmentCage(garment), options));
@@ -67,6 +101,8 @@ void runMarkers(const MarkersArgs& args) {
 
 struct ReconstructArgs {
   std::string markers, pose, body, dressing, dataset, split = "test", out, method = "spline", writeBase, garment;
+  std::string markersSequence, motion, model, engine = "onednn";
+  StitchArgs stitch;
   double noiseCm = 0, dropout = 0, spacing = 0.10;
   std::uint64_t seed = 0;
   int meshes = 3;
@@ -142,6 +178,97 @@ void runFromMarkers(const ReconstructArgs& args) {
   core::writeMesh(args.out, mesh);
   PIXELCLOTH_INFO("reconstruct: " << garment.name << " from " << markers.markers.size() << " markers (" << args.method
                                   << "; " << result.spline.summary() << ") -> " << args.out);
+}
+
+/// The sequence form: marker trajectories rebuilt frame by frame on the motion's poses, optionally refined by a
+/// residual model, written as a garment sequence (eval::writeGarmentSequence).
+void runFromMarkerSequence(const ReconstructArgs& args) {
+  PIXELCLOTH_CHECK(!args.markers.empty(),
+                   "reconstruct --markers-sequence needs --markers (the marker file the "
+                   "trajectories' columns follow, e.g. from pixelcloth markers)");
+  PIXELCLOTH_CHECK(!args.motion.empty(),
+                   "reconstruct --markers-sequence needs --motion (the body's poses of every "
+                   "frame, from pixelcloth motion import)");
+  PIXELCLOTH_CHECK(args.pose.empty(), "reconstruct --markers-sequence: the poses come from --motion, not --pose");
+  PIXELCLOTH_CHECK(!args.out.empty(), "reconstruct --markers-sequence needs --out (the output folder)");
+  PIXELCLOTH_CHECK(args.model.empty() || (args.body.empty() && args.dressing.empty() && args.garment.empty()),
+                   "reconstruct --model: the model's dataset holds the body and garment; not with --body, --dressing "
+                   "or --garment");
+  PIXELCLOTH_CHECK(args.body.empty() || args.dressing.empty(),
+                   "reconstruct: --body and --dressing exclude each other: the dressing folder holds its body");
+  PIXELCLOTH_CHECK(args.stitch.modes.find(',') == std::string::npos,
+                   "reconstruct --stitch " << args.stitch.modes << ": one mode");
+  core::checkOutputFolder(args.out);
+  const recon::ReconstructionMethod method = recon::reconstructionMethodFromName(args.method, "reconstruct --method");
+  const motion::Motion clip = motion::readMotion(args.motion, poseLimits());
+  const cage::MarkerSet definition = cage::readMarkers(args.markers);
+  const motion::MarkerTrajectories trajectories =
+      motion::readMarkerTrajectories(args.markersSequence, static_cast<int>(definition.markers.size()), args.markers);
+  const nlohmann::json info = {{"markers", args.markers},
+                               {"markers_sequence", args.markersSequence},
+                               {"motion", args.motion},
+                               {"method", args.model.empty() ? args.method : "spline_anisotropic"},
+                               {"model", args.model.empty() ? nlohmann::json() : nlohmann::json(args.model)}};
+  eval::MotionPrediction result;
+  body::Body body;
+  core::Mesh garmentMesh;
+  if (!args.model.empty()) {
+    // The base of every frame as the model's base folder was made, then the residual networks.
+    learn::PredictionInputs inputs = learn::posesPredictionInputs(
+        args.model, clip.poses, args.motion, datasetFolder(fs::path()), learn::engineFromName(args.engine, "--engine"));
+    PIXELCLOTH_CHECK(inputs.model->residual(), "reconstruct --model " << args.model
+                                                                      << ": a model that takes the pose alone; "
+                                                                         "for it use predict --motion");
+    body = data::loadDatasetBody(inputs.data.info.where());
+    garmentMesh = inputs.data.garment.mesh;
+    const cage::Cage cage = cage::garmentCage(inputs.data.garment);
+    definition.validate(inputs.data.garment, cage, args.markers, false);
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<cage::MarkerSet> captured = eval::capturedFrames(
+        definition, cage, trajectories, clip, body.skeleton.positions.row(body.skeleton.index("root")).transpose());
+    eval::addCaptureBases(inputs, captured, args.threads, args.markersSequence);
+    const double baseSeconds = core::secondsSince(start);
+    const std::vector<stitch::Stitcher> stitchers = makeStitchers(args.stitch, inputs);
+    result = eval::predictMotion(inputs, stitchers.front(), clip, args.out, info);
+    result.predictSeconds += baseSeconds;
+  } else {
+    const garment::Garment garment = markersGarment(args, definition);
+    const cage::Cage cage = cage::garmentCage(garment);
+    definition.validate(garment, cage, args.markers, false);
+    Eigen::MatrixX3d rest;
+    garment::Embedding embedding;
+    if (!args.dressing.empty()) {
+      data::DressingFiles dressed =
+          data::loadDressingFiles(datasetFolder(args.dressing), garment, "the markers (" + args.markers + ")");
+      body = std::move(dressed.body);
+      rest = std::move(dressed.rest);
+      embedding = std::move(dressed.embedding);
+    } else {
+      body = args.body.empty() ? body::makeMannequin() : body::loadBody(args.body);
+      const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), garment, cage);
+      rest = dressing.relaxed;
+      embedding = dressing.embedding;
+    }
+    recon::ReconstructionOptions options;
+    options.spline = args.spline;
+    options.spline.restLengths = cage::restLengthsFromName(args.restLengths, "reconstruct --rest-lengths");
+    options.bodyClearance = args.bodyClearance;
+    if (!args.lengthModel.empty() && args.lengthModel != "none") {
+      options.lengthModel = cage::readLengthModel(args.lengthModel);
+      options.lengthModel->validate(garment.name, cage, args.lengthModel);
+    }
+    garmentMesh = garment.mesh;
+    const std::vector<cage::MarkerSet> captured = eval::capturedFrames(
+        definition, cage, trajectories, clip, body.skeleton.positions.row(body.skeleton.index("root")).transpose());
+    const recon::GarmentReconstructor reconstructor(body, garment, embedding, rest, options);
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<Eigen::MatrixX3d> garments =
+        eval::reconstructFrames(reconstructor, captured, clip.poses, method, args.threads, args.markersSequence);
+    result = eval::writeGarmentSequence(body, clip.poses, garmentMesh, std::move(garments), {},
+                                        core::secondsSince(start), clip, args.out, info);
+  }
+  viz::writeSequencePictures(args.out, body.mesh.F, garmentMesh, result);
+  std::cout << "reconstruct: " << sequenceSummary(result, args.out) << "\n";
 }
 
 /// --length-model of the dataset forms: fit (also when not given), none, or a length model file.
@@ -220,6 +347,13 @@ void runWriteBase(const ReconstructArgs& args) {
 
 void runReconstruct(const ReconstructArgs& args) {
   if (args.quiet) core::setLogLevel(core::LogLevel::Warning);
+  if (!args.markersSequence.empty()) {
+    PIXELCLOTH_CHECK(args.dataset.empty() && args.writeBase.empty(),
+                     "reconstruct --markers-sequence: not with --dataset or --write-base");
+    return runFromMarkerSequence(args);
+  }
+  PIXELCLOTH_CHECK(args.model.empty() && args.motion.empty(),
+                   "reconstruct: --model and --motion go with --markers-sequence");
   PIXELCLOTH_CHECK(args.markers.empty() != args.dataset.empty(),
                    "reconstruct: give either --markers (with --pose) or --dataset, not both or neither");
   PIXELCLOTH_CHECK(args.writeBase.empty() || !args.dataset.empty(),
@@ -238,7 +372,9 @@ void registerReconstruct(CLI::App& app) {
   CLI::App* markers = app.add_subcommand(
       "markers",
       "Define markers on a garment's cage (every junction, points along each curve); with --dataset, take their "
-      "positions from a sample (optionally noisy, with dropout) (docs/markers.md)");
+      "positions from a sample (optionally noisy, with dropout); with --pc2, from every frame of a garment sequence, "
+      "as "
+      "trajectories (docs/markers.md, docs/motion.md)");
   markers->add_option("--garment", margs->garment, std::string(kGarmentHelp) + " (ignored with --dataset, which "
                                                    "carries its garment)")->capture_default_str();
   markers->add_option("--spacing", margs->spacing, "Marker spacing along the curves, metres")->capture_default_str();
@@ -249,6 +385,12 @@ void registerReconstruct(CLI::App& app) {
       ->capture_default_str();
   markers->add_option("--seed", margs->seed, "Seed of noise and dropout")->capture_default_str();
   markers->add_option("--pose-out", margs->poseOut, "Also write the sample's pose (JSON, for reconstruct --pose)");
+  markers->add_option("--pc2", margs->pc2,
+                      "A garment sequence's point cache (garment.pc2, as predict --motion writes it): the markers' "
+                      "positions in every frame, written with --trajectories");
+  markers->add_option("--trajectories", margs->trajectories,
+                      "With --pc2: the marker trajectories (NPY, frames x markers x 3, NaN where dropped), for "
+                      "reconstruct --markers-sequence");
   markers->add_option("--out", margs->out, "Marker file (JSON)")->required();
   markers->callback([margs] { runMarkers(*margs); });
 
@@ -307,8 +449,20 @@ void registerReconstruct(CLI::App& app) {
   verb->add_option("--write-base", args->writeBase,
                    "Dataset form: instead of --out, write a base folder (base offsets and marker features of every "
                    "row, spline_anisotropic; docs/dataset.md)");
-  verb->add_option("--threads", args->threads, "--write-base: samples rebuilt at once (0: one per core)")
+  verb->add_option("--threads", args->threads,
+                   "--write-base, --markers-sequence: samples or frames rebuilt at once (0: one per core)")
       ->capture_default_str();
+  verb->add_option("--markers-sequence", args->markersSequence,
+                   "Marker trajectories (NPY frames x markers x 3, or CSV of one frame a line; NaN or empty where a "
+                   "marker is not seen) of the markers in --markers, in the motion's world: with --motion, every "
+                   "frame rebuilt and written as a sequence (animation.glb, OBJ frames, PC2 caches, metrics.json; "
+                   "docs/motion.md)");
+  verb->add_option("--motion", args->motion, "--markers-sequence: the body's motion (pixelcloth motion import)");
+  verb->add_option("--model", args->model,
+                   "--markers-sequence: a residual model (train --base) that refines every frame; its dataset holds "
+                   "the body and garment");
+  addEngineOption(*verb, args->engine);
+  addStitchOptions(*verb, args->stitch, false);
   verb->add_flag("--quiet", args->quiet, "No progress on stderr");
   verb->callback([args, verb] {
     for (const char* name : {"--split", "--meshes", "--method"})

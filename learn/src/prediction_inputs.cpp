@@ -43,9 +43,16 @@ PredictionInputs posesPredictionInputs(const fs::path& modelFolder, const std::v
   PIXELCLOTH_CHECK(!poses.empty(), name << ": no poses");
   const data::DatasetFolder dataset =
       datasetArg.path.empty() ? datasetArg.with(trainingDatasetOf(modelFolder)) : datasetArg;
+  return posesPredictionInputs(modelFor(modelFolder, data::readDatasetInfo(dataset), engine), poses, name, dataset);
+}
+
+PredictionInputs posesPredictionInputs(std::unique_ptr<TrainedModel> model, const std::vector<body::Pose>& poses,
+                                       const std::string& name, const data::DatasetFolder& dataset) {
+  PIXELCLOTH_CHECK(!poses.empty(), name << ": no poses");
   const data::DatasetInfo info = data::readDatasetInfo(dataset);
+  model->checkDataset(info);
   PredictionInputs out;
-  out.model = modelFor(modelFolder, info, engine);
+  out.model = std::move(model);
   TrainingData& data = out.data;
   data.folder = dataset.path;
   data.info = info;
@@ -78,16 +85,26 @@ PredictionInputs posesPredictionInputs(const fs::path& modelFolder, const std::v
 }
 
 void addPoseBase(PredictionInputs& inputs, const Eigen::MatrixX3d& baseOffsets, const Eigen::VectorXd& features) {
+  addPoseBases(inputs, {baseOffsets}, features.transpose());
+}
+
+void addPoseBases(PredictionInputs& inputs, const std::vector<Eigen::MatrixX3d>& baseOffsets,
+                  const Eigen::MatrixXd& features) {
   TrainingData& data = inputs.data;
-  PIXELCLOTH_CHECK(inputs.model->residual() && data.rows() == 1 && data.base.empty(),
-                   "addPoseBase: a residual model's one pose row without its base expected");
+  const Eigen::Index rows = data.rows();
+  PIXELCLOTH_CHECK(inputs.model->residual() && data.base.empty() &&
+                       static_cast<Eigen::Index>(baseOffsets.size()) == rows && features.rows() == rows &&
+                       features.cols() % 3 == 0,
+                   "addPoseBases: a residual model's pose rows without their base, and one base and feature row "
+                   "for each, expected");
   data.baseFolder = inputs.model->baseFolder();
-  data.markers = static_cast<int>(features.size() / 3);
-  data.base.push_back(
-      valuesInSpace(data.space, data.frames.front(), garment::positionsFromOffsets(data.frames.front(), baseOffsets)));
-  const Eigen::RowVectorXf pose = data.inputs.row(0);
-  data.inputs.resize(1, pose.size() + features.size());
-  data.inputs << pose, features.transpose().cast<float>();
+  data.markers = static_cast<int>(features.cols() / 3);
+  for (Eigen::Index r = 0; r < rows; ++r)
+    data.base.push_back(
+        valuesInSpace(data.space, data.frames[r], garment::positionsFromOffsets(data.frames[r], baseOffsets[r])));
+  const Eigen::MatrixXf poses = data.inputs;
+  data.inputs.resize(rows, poses.cols() + features.cols());
+  data.inputs << poses, features.cast<float>();
 }
 
 }  // namespace pixelcloth::learn

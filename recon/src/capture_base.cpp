@@ -12,8 +12,13 @@ namespace pixelcloth::recon {
 
 namespace fs = std::filesystem;
 
-CaptureBase baseOfCapture(const fs::path& baseFolder, const data::DatasetFolder& where, const cage::MarkerSet& captured,
-                          const body::Pose& pose, const std::string& markersContext) {
+struct CaptureRebuilder::Impl {
+  std::unique_ptr<GarmentReconstructor> reconstructor;
+  cage::MarkerSet definition;
+};
+
+CaptureRebuilder::CaptureRebuilder(const fs::path& baseFolder, const data::DatasetFolder& where)
+    : impl_(std::make_unique<Impl>()) {
   const fs::path& dataset = where.path;
   const fs::path manifestPath = baseFolder / "manifest.json";
   const std::string context = manifestPath.string();
@@ -40,25 +45,41 @@ CaptureBase baseOfCapture(const fs::path& baseFolder, const data::DatasetFolder&
   const body::Body body = data::loadDatasetBody(where);
   const garment::Garment garment = data::datasetGarment(info);
   const garment::Embedding embedding = data::loadDatasetEmbedding(where, body.mesh.F.rows());
-  const GarmentReconstructor reconstructor(body, garment, embedding,
-                                           data::loadDatasetRestPositions(where, garment.mesh.numVertices()), options);
+  impl_->reconstructor = std::make_unique<GarmentReconstructor>(
+      body, garment, embedding, data::loadDatasetRestPositions(where, garment.mesh.numVertices()), options);
   cage::MarkerOptions markerOptions;
   markerOptions.spacing = core::requireValue<double>(settings, "marker_spacing_m", context);
-  const cage::MarkerSet definition = cage::defineMarkers(garment, reconstructor.cage(), markerOptions);
+  impl_->definition = cage::defineMarkers(garment, impl_->reconstructor->cage(), markerOptions);
+  const cage::MarkerSet& definition = impl_->definition;
   const nlohmann::json names = core::requireField(settings, "marker_names", context);
   PIXELCLOTH_CHECK(names.is_array() && names.size() == definition.markers.size(),
                    context << ": " << names.size() << " marker names, but the " << garment.name << "'s markers at "
                            << markerOptions.spacing << " m spacing are " << definition.markers.size());
   for (size_t k = 0; k < names.size(); ++k)
-    PIXELCLOTH_CHECK(names[k] == definition.markers[k].name,
-                     context << ": marker " << k << " is '" << names[k].get<std::string>() << "', expected '"
-                             << definition.markers[k].name << "'");
-  captured.validate(garment, reconstructor.cage(), markersContext, true);
+    PIXELCLOTH_CHECK(names[k] == definition.markers[k].name, context << ": marker " << k + 1 << " is '"
+                                                                     << names[k].get<std::string>() << "', expected '"
+                                                                     << definition.markers[k].name << "'");
+}
+
+CaptureRebuilder::~CaptureRebuilder() = default;
+
+const cage::MarkerSet& CaptureRebuilder::definition() const { return impl_->definition; }
+const GarmentReconstructor& CaptureRebuilder::reconstructor() const { return *impl_->reconstructor; }
+
+CaptureBase CaptureRebuilder::rebuild(const cage::MarkerSet& captured, const body::Pose& pose,
+                                      const std::string& markersContext) const {
+  const GarmentReconstructor& reconstructor = *impl_->reconstructor;
+  captured.validate(reconstructor.garment(), reconstructor.cage(), markersContext, true);
   const PosedBody posed = reconstructor.posed(pose);
   CaptureBase base;
   base.offsets = reconstructor.reconstruct(captured, posed, ReconstructionMethod::SplineAnisotropic).offsets;
-  base.features = markerFeatures(definition, captured, posed.frames());
+  base.features = markerFeatures(impl_->definition, captured, posed.frames());
   return base;
+}
+
+CaptureBase baseOfCapture(const fs::path& baseFolder, const data::DatasetFolder& where, const cage::MarkerSet& captured,
+                          const body::Pose& pose, const std::string& markersContext) {
+  return CaptureRebuilder(baseFolder, where).rebuild(captured, pose, markersContext);
 }
 
 }  // namespace pixelcloth::recon

@@ -4,12 +4,18 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <Eigen/Geometry>
 #include <chrono>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/data/dataset.h"
+#include "pixelcloth/motion/motion.h"
+#include "pixelcloth/motion/sequence.h"
+#include "pixelcloth/motion/trajectories.h"
 #include "support/cli.h"
 #include "support/fixtures.h"
 #include "support/python.h"
@@ -300,5 +306,95 @@ TEST_F(LearnCli, AMotionClipBecomesAnAnimatedGarment) {
   EXPECT_TRUE(refused(runPixelcloth({"predict", "--model", model.string(), "--motion", motion.string(), "--out",
                                      (work_ / "none").string()}),
                       {"poses.npy"}));
+  EXPECT_FALSE(fs::exists(work_ / "none"));
+}
+
+// reconstruct --markers-sequence: four of the dataset's shirts as the frames of a capture whose root turns and walks,
+// their markers taken in its world by markers --pc2 with a fifth of the curve markers lost in each frame; rebuilt frame
+// by frame by the spline alone and refined by a residual model, the garments come back near the shirts they were
+// taken from. A frame that loses a curve's end, and trajectories of another length, are refused.
+TEST_F(LearnCli, MarkerTrajectoriesAreRebuiltFrameByFrame) {
+  namespace pm = pixelcloth::motion;
+  const pixelcloth::data::Dataset data = pixelcloth::data::openDataset(dataset());
+  const pixelcloth::body::Body body = pixelcloth::data::loadDatasetBody(dataset());
+  const Eigen::Vector3d root = body.skeleton.positions.row(body.skeleton.index("root")).transpose();
+  pm::Motion motion;
+  motion.fps = 24;
+  motion.source = "four shirts";
+  motion.rootTranslations.resize(4, 3);
+  std::vector<Eigen::MatrixX3d> shirts;
+  for (int f = 0; f < 4; ++f) {
+    motion.poses.push_back(pixelcloth::body::Pose::fromLeading(data.pose(f)));
+    motion.rootRotations.push_back(Eigen::AngleAxisd(0.3 * f, Eigen::Vector3d::UnitY()).toRotationMatrix());
+    motion.rootTranslations.row(f) << 0.05 * f, 0, 0.2 * f;
+    shirts.push_back(data.positionsOf(f).cast<double>());
+  }
+  const fs::path motionDir = work_ / "motion", out = work_ / "rebuilt", refined = work_ / "refined";
+  pm::writeMotion(motionDir, motion);
+  const std::vector<Eigen::MatrixX3d> world = pm::withRootMotion(shirts, motion, root);
+  pm::writePc2(work_ / "shirts.pc2", world);
+  const fs::path markers = work_ / "markers.json", trajectories = work_ / "trajectories.npy";
+  CliRun run = runPixelcloth({"markers", "--pc2", (work_ / "shirts.pc2").string(), "--trajectories",
+                              trajectories.string(), "--dropout", "0.2", "--seed", "3", "--out", markers.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  const nlohmann::json definition = nlohmann::json::parse(readFile(markers));
+  const pm::MarkerTrajectories read =
+      pm::readMarkerTrajectories(trajectories, static_cast<int>(definition["markers"].size()), "markers.json");
+  int lost = 0;
+  for (const Eigen::MatrixX3d& frame : read.frames) lost += static_cast<int>(frame.col(0).array().isNaN().count());
+  EXPECT_GT(lost, 4);
+
+  auto errorCm = [&](const fs::path& folder) {
+    const std::vector<Eigen::MatrixX3f> garments = pm::readPc2(folder / "garment.pc2");
+    EXPECT_EQ(garments.size(), 4u);
+    double error = 0;
+    for (int f = 0; f < 4 && f < static_cast<int>(garments.size()); ++f)
+      error += 100 * (garments[f].cast<double>() - world[f]).rowwise().norm().mean() / 4;
+    return error;
+  };
+  run = runPixelcloth({"reconstruct", "--markers-sequence", trajectories.string(), "--markers", markers.string(),
+                       "--motion", motionDir.string(), "--dressing", dataset().string(), "--out", out.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  for (const char* name : {"animation.glb", "frames/garment_0003.obj", "garment.pc2", "body.pc2", "strip.png",
+                           "temporal.png", "metrics.json"})
+    EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
+  const double spline = errorCm(out);
+  const nlohmann::json metrics = nlohmann::json::parse(readFile(out / "metrics.json"));
+  EXPECT_EQ(metrics["frames"], 4);
+  EXPECT_TRUE(metrics["seam_gap_cm"].is_null());  // one garment, no patch networks
+  EXPECT_EQ(metrics["method"], "spline");
+
+  const fs::path residual = work_ / "residual";
+  train({"--model", "patch", "--width", "0.03125", "--epochs", "1", "--residual", bases().string(), "--out",
+         residual.string()});
+  run = runPixelcloth({"reconstruct", "--markers-sequence", trajectories.string(), "--markers", markers.string(),
+                       "--motion", motionDir.string(), "--model", residual.string(), "--out", refined.string()});
+  ASSERT_EQ(run.status, 0) << run;
+  const double learned = errorCm(refined);
+  const nlohmann::json refinedMetrics = nlohmann::json::parse(readFile(refined / "metrics.json"));
+  EXPECT_GE(refinedMetrics["seam_gap_cm"]["mean"].get<double>(), 0);
+  std::cout << "[4 frames, 20% of the curve markers lost] spline " << spline << " cm, residual patches (1 epoch) "
+            << learned << " cm" << std::endl;
+  EXPECT_LT(spline, 1.5);
+  EXPECT_LT(learned, 1.5);
+
+  // Frame 2 loses the marker at the end of a seam, then the trajectories lose a frame.
+  pm::MarkerTrajectories damaged = read;
+  int junction = 0;  // where the side seam ends at the hem
+  while (definition["markers"][junction]["name"] != "hem/side_left") ++junction;
+  damaged.frames[1].row(junction).setConstant(std::nan(""));
+  pm::writeMarkerTrajectories(work_ / "lost_end.npy", damaged);
+  EXPECT_TRUE(
+      refused(runPixelcloth({"reconstruct", "--markers-sequence", (work_ / "lost_end.npy").string(), "--markers",
+                             markers.string(), "--motion", motionDir.string(), "--dressing", dataset().string(),
+                             "--out", (work_ / "none").string()}),
+              {"lost_end.npy: frame 2", "its end", definition["markers"][junction]["name"].get<std::string>()}));
+  damaged = read;
+  damaged.frames.pop_back();
+  pm::writeMarkerTrajectories(work_ / "short.npy", damaged);
+  EXPECT_TRUE(refused(runPixelcloth({"reconstruct", "--markers-sequence", (work_ / "short.npy").string(), "--markers",
+                                     markers.string(), "--motion", motionDir.string(), "--dressing", dataset().string(),
+                                     "--out", (work_ / "none").string()}),
+                      {"short.npy", "3 frames, but the motion has 4"}));
   EXPECT_FALSE(fs::exists(work_ / "none"));
 }

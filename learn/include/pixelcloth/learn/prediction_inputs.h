@@ -37,9 +37,16 @@ PredictionInputs posePredictionInputs(const std::filesystem::path& modelFolder, 
 /// in messages. Progress on stderr.
 PredictionInputs posesPredictionInputs(const std::filesystem::path& modelFolder, const std::vector<body::Pose>& poses,
                                        const std::string& name, const data::DatasetFolder& dataset, Engine engine);
+/// The same with the model already loaded (checked against `dataset`, which must be given).
+PredictionInputs posesPredictionInputs(std::unique_ptr<TrainedModel> model, const std::vector<body::Pose>& poses,
+                                       const std::string& name, const data::DatasetFolder& dataset);
 
 /// Completes the one row of a residual model's posePredictionInputs: the base offsets (#V x 3, du dv dn in the posed
 /// body's frames) rebuilt from the garment's markers and their 3M marker features (recon::baseOfCapture).
 void addPoseBase(PredictionInputs& inputs, const Eigen::MatrixX3d& baseOffsets, const Eigen::VectorXd& features);
+/// The same for every row of a residual model's posesPredictionInputs (a capture's frames): one base per row and
+/// one row of 3M marker features per row.
+void addPoseBases(PredictionInputs& inputs, const std::vector<Eigen::MatrixX3d>& baseOffsets,
+                  const Eigen::MatrixXd& features);
 
 }  // namespace pixelcloth::learn

@@ -1,13 +1,19 @@
 // The demo's motion: a clip of its own, out as a GLB, in again through assimp, and through the patch decoders.
 #include <Eigen/Geometry>
-#include <cmath>
+#include <algorithm>
+#include <chrono>
 
+#include "pixelcloth/cage/garment_cage.h"
+#include "pixelcloth/cage/markers.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/measure.h"
 #include "pixelcloth/eval/demo.h"
+#include "pixelcloth/eval/sampled_motion.h"
 #include "pixelcloth/learn/prediction_inputs.h"
+#include "pixelcloth/learn/spaces.h"
 #include "pixelcloth/motion/clip.h"
 #include "pixelcloth/motion/glb.h"
-#include "pixelcloth/sim/pose_sampler.h"
+#include "pixelcloth/motion/trajectories.h"
 #include "pixelcloth/stitch/stitcher.h"
 
 namespace pixelcloth::eval {
@@ -23,29 +29,10 @@ DemoMotion runDemoMotion(const fs::path& report, const DemoPlan& plan) {
   const data::DatasetFolder dataset(report / "dataset_tshirt");
   const body::Body body = data::loadDatasetBody(dataset);
 
-  // Three seconds at 24 fps through four key poses from the paper's sampler (arms clear of the torso; Euler angles
-  // eased between them stay inside the limits' box) and back to the first, the root turning 40 degrees and stepping
-  // forward.
+  // Three seconds at 24 fps through four key poses from the paper's sampler and back to the first.
   constexpr int kKeys = 4, kFramesPerKey = 18;
-  constexpr double kFps = 24;
-  sim::PoseSamplerOptions sampling;
-  sampling.seed = plan.seed + 1000;
-  std::vector<Eigen::Matrix<double, 10, 3>> keys;
-  for (const body::Pose& pose : sim::PoseSampler(body, sampling).sample(kKeys)) keys.push_back(pose.toEulerDegrees());
-  keys.push_back(keys.front());
-  motion::AnimatedScene scene;
-  scene.body = &body;
-  scene.fps = kFps;
-  const int frames = kKeys * kFramesPerKey + 1;
-  scene.rootTranslations.resize(frames, 3);
-  for (int f = 0; f < frames; ++f) {
-    const int k = std::min(f / kFramesPerKey, kKeys - 1);
-    const double s = static_cast<double>(f - k * kFramesPerKey) / kFramesPerKey, eased = s * s * (3 - 2 * s);
-    scene.poses.push_back(body::Pose::fromEulerDegrees((1 - eased) * keys[k] + eased * keys[k + 1]));
-    const double t = static_cast<double>(f) / (frames - 1);
-    scene.rootRotations.push_back(Eigen::AngleAxisd(40 * M_PI / 180 * t, Eigen::Vector3d::UnitY()).toRotationMatrix());
-    scene.rootTranslations.row(f) << 0, 0, 0.3 * t;
-  }
+  const motion::AnimatedScene scene = sampledMotion(body, kKeys, kFramesPerKey, 24, plan.seed + 1000);
+  const int frames = static_cast<int>(scene.poses.size());
   motion::writeAnimatedGlb(out.clip, scene);
   out.keyPoses = kKeys;
 
@@ -67,6 +54,39 @@ DemoMotion runDemoMotion(const fs::path& report, const DemoPlan& plan) {
   const stitch::Stitcher mean(inputs.data.garment, stitch::StitchMode{}, nullptr);
   out.prediction = predictMotion(inputs, mean, out.motion, out.predicted,
                                  {{"model", "model_patch"}, {"motion", "motion/imported"}, {"stitch", "mean"}});
+
+  // The predicted garment as markers in the clip's world, as pixelcloth markers --pc2 takes them from garment.pc2.
+  out.markers = folder / "markers";
+  out.reconstructed = folder / "reconstructed";
+  learn::PredictionInputs residual = learn::posesPredictionInputs(
+      report / "model_residual_patch", out.motion.poses, out.imported.string(), dataset, learn::Engine::OneDnn);
+  const garment::Garment& garment = residual.data.garment;
+  const cage::Cage cage = cage::garmentCage(garment);
+  const cage::MarkerSet definition = cage::defineMarkers(garment, cage);  // the demo's bases' spacing
+  out.markerCount = static_cast<int>(definition.markers.size());
+  const Eigen::Vector3d root = body.skeleton.positions.row(body.skeleton.index("root")).transpose();
+  motion::MarkerTrajectories trajectories =
+      markerTrajectories(definition, cage, motion::withRootMotion(out.prediction.garment, out.motion, root),
+                         {0, out.markerDropout, plan.seed});
+  trajectories.source = (out.markers / "trajectories.npy").string();
+  cage::writeMarkers(out.markers / "markers.json", definition);
+  motion::writeMarkerTrajectories(trajectories.source, trajectories);
+
+  // In again as pixelcloth reconstruct --markers-sequence --model reads them.
+  const auto start = std::chrono::steady_clock::now();
+  addCaptureBases(residual, capturedFrames(definition, cage, trajectories, out.motion, root), 0, trajectories.source);
+  const double baseSeconds = core::secondsSince(start);
+  out.reconstruction =
+      predictMotion(residual, mean, out.motion, out.reconstructed,
+                    {{"model", "model_residual_patch"}, {"markers_sequence", "motion/markers/trajectories.npy"}});
+  out.reconstruction.predictSeconds += baseSeconds;
+  for (int f = 0; f < frames; ++f) {
+    const Eigen::MatrixX3d base =
+        learn::positionsFromValues(residual.data.space, residual.data.frames[f], residual.data.base[f]);
+    out.baseErrorCm += core::meanVertexErrorCm(base, out.prediction.garment[f]) / frames;
+    out.reconstructionErrorCm +=
+        core::meanVertexErrorCm(out.reconstruction.garment[f], out.prediction.garment[f]) / frames;
+  }
   return out;
 }
 

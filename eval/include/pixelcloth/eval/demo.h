@@ -126,13 +126,21 @@ DemoSeams runDemoSeams(const std::filesystem::path& report, const DemoPlan& plan
 /// A motion of the demo's own through the patch decoders of runDemoLearning: key poses from the paper's sampler eased
 /// into one another with a slow turn of the root, written as an animated GLB the way other tools write clips
 /// (motion/clip.glb), imported back through assimp and retargeted (motion/imported/), and predicted frame by frame
-/// (motion/predicted/: eval::predictMotion's files).
+/// (motion/predicted/: eval::predictMotion's files). Then the predicted garment as a capture system would see it: the
+/// residual models' markers in every frame, a tenth of the curve markers lost in each (motion/markers/), rebuilt frame
+/// by frame and refined by the residual patch decoders (motion/reconstructed/).
 struct DemoMotion {
-  std::filesystem::path clip, imported, predicted;
+  std::filesystem::path clip, imported, predicted, markers, reconstructed;
   int keyPoses = 0;
   motion::Motion motion;          ///< as imported
   double maxRetargetDegrees = 0;  ///< the imported poses against the ones written, the largest joint angle apart
   MotionPrediction prediction;
+  double markerDropout = 0.1;
+  int markerCount = 0;
+  MotionPrediction reconstruction;
+  /// Mean vertex distance from the predicted garment the markers were taken from, over the frames, cm: of the base
+  /// the markers alone rebuild, and of the refined garment.
+  double baseErrorCm = 0, reconstructionErrorCm = 0;
 };
 DemoMotion runDemoMotion(const std::filesystem::path& report, const DemoPlan& plan);
 

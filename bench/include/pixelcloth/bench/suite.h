@@ -12,8 +12,8 @@
 namespace pixelcloth::bench {
 
 /// The suites: body to simulation and files; the decoders at the paper's width; the PCA filter's fit.
-enum class Suite { Procedural, Learn, Stitch };
-const char* suiteName(Suite suite);                                        ///< "procedural", "learn", "stitch"
+enum class Suite { Procedural, Learn, Stitch, Motion };
+const char* suiteName(Suite suite);  ///< "procedural", "learn", "stitch", "motion"
 Suite suiteFromName(const std::string& name, const std::string& context);  ///< InputError naming `context` otherwise
 
 /// Receives each figure as soon as it is measured.

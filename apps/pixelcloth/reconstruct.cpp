@@ -134,6 +134,20 @@ garment::Garment markersGarment(const ReconstructArgs& args, const cage::MarkerS
   }
 }
 
+/// The body, the dressed garment and its embedding of the markers forms: the --dressing folder's, else the garment
+/// dressed on --body or the mannequin.
+data::DressingFiles markersDressing(const ReconstructArgs& args, const garment::Garment& garment,
+                                    const cage::Cage& cage) {
+  if (!args.dressing.empty())
+    return data::loadDressingFiles(datasetFolder(args.dressing), garment, "the markers (" + args.markers + ")");
+  data::DressingFiles out;
+  out.body = args.body.empty() ? body::makeMannequin() : body::loadBody(args.body);
+  const cage::Dressing dressing = cage::dressGarment(out.body, cage::bodyCage(out.body), garment, cage);
+  out.rest = dressing.relaxed;
+  out.embedding = dressing.embedding;
+  return out;
+}
+
 void runFromMarkers(const ReconstructArgs& args) {
   PIXELCLOTH_CHECK(!args.pose.empty(), "reconstruct --markers needs --pose (the body's pose, JSON)");
   PIXELCLOTH_CHECK(!args.out.empty(), "reconstruct --markers needs --out (the garment's OBJ)");
@@ -155,23 +169,9 @@ void runFromMarkers(const ReconstructArgs& args) {
   const garment::Garment garment = markersGarment(args, markers);
   const cage::Cage cage = cage::garmentCage(garment);
   markers.validate(garment, cage, args.markers, true);
-  body::Body body;
-  Eigen::MatrixX3d rest;
-  garment::Embedding embedding;
-  if (!args.dressing.empty()) {
-    data::DressingFiles dressed =
-        data::loadDressingFiles(datasetFolder(args.dressing), garment, "the markers (" + args.markers + ")");
-    body = std::move(dressed.body);
-    rest = std::move(dressed.rest);
-    embedding = std::move(dressed.embedding);
-  } else {
-    body = args.body.empty() ? body::makeMannequin() : body::loadBody(args.body);
-    const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), garment, cage);
-    rest = dressing.relaxed;
-    embedding = dressing.embedding;
-  }
+  const data::DressingFiles dressed = markersDressing(args, garment, cage);
   if (options.lengthModel) options.lengthModel->validate(garment.name, cage, args.lengthModel);
-  const recon::GarmentReconstructor reconstructor(body, garment, embedding, rest, options);
+  const recon::GarmentReconstructor reconstructor(dressed.body, garment, dressed.embedding, dressed.rest, options);
   const recon::Reconstruction result = reconstructor.reconstruct(markers, pose, method, args.markers);
   core::Mesh mesh = garment.mesh;
   mesh.V = result.positions;
@@ -235,20 +235,8 @@ void runFromMarkerSequence(const ReconstructArgs& args) {
     const garment::Garment garment = markersGarment(args, definition);
     const cage::Cage cage = cage::garmentCage(garment);
     definition.validate(garment, cage, args.markers, false);
-    Eigen::MatrixX3d rest;
-    garment::Embedding embedding;
-    if (!args.dressing.empty()) {
-      data::DressingFiles dressed =
-          data::loadDressingFiles(datasetFolder(args.dressing), garment, "the markers (" + args.markers + ")");
-      body = std::move(dressed.body);
-      rest = std::move(dressed.rest);
-      embedding = std::move(dressed.embedding);
-    } else {
-      body = args.body.empty() ? body::makeMannequin() : body::loadBody(args.body);
-      const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), garment, cage);
-      rest = dressing.relaxed;
-      embedding = dressing.embedding;
-    }
+    data::DressingFiles dressed = markersDressing(args, garment, cage);
+    body = std::move(dressed.body);
     recon::ReconstructionOptions options;
     options.spline = args.spline;
     options.spline.restLengths = cage::restLengthsFromName(args.restLengths, "reconstruct --rest-lengths");
@@ -260,7 +248,7 @@ void runFromMarkerSequence(const ReconstructArgs& args) {
     garmentMesh = garment.mesh;
     const std::vector<cage::MarkerSet> captured = eval::capturedFrames(
         definition, cage, trajectories, clip, body.skeleton.positions.row(body.skeleton.index("root")).transpose());
-    const recon::GarmentReconstructor reconstructor(body, garment, embedding, rest, options);
+    const recon::GarmentReconstructor reconstructor(body, garment, dressed.embedding, dressed.rest, options);
     const auto start = std::chrono::steady_clock::now();
     std::vector<Eigen::MatrixX3d> garments =
         eval::reconstructFrames(reconstructor, captured, clip.poses, method, args.threads, args.markersSequence);

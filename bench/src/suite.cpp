@@ -87,6 +87,21 @@ void emitLearned(const FigureSink& sink, const std::string& name, double value, 
   sink(line);
 }
 
+/// Two simulated shirts in `dir`/data and 28 patch decoders of `width` trained on them for one epoch in `dir`/model:
+/// a model to time (speed does not depend on the weights).
+void trainOnTwoShirts(const std::filesystem::path& dir, double width) {
+  std::filesystem::create_directories(dir);
+  sim::GenerateOptions generate;
+  generate.count = 2;
+  generate.seed = 1;
+  sim::generateDataset(dir / "data", generate);
+  learn::TrainOptions options;
+  options.model.width = width;
+  options.epochs = 1;
+  options.batch = 2;
+  learn::train(dir / "data", dir / "model", options);
+}
+
 /// The motion path's speed goal: a 301-frame clip (a GLB of the dataset's body, as another tool would write it) read
 /// through assimp, retargeted, every frame predicted 16 at a time by 28 patch decoders of the paper's width (1), and
 /// written as OBJ frames, PC2 caches and an animated GLB with the temporal measures; against the same decoders'
@@ -97,16 +112,7 @@ void benchMotion(const FigureSink& sink) {
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const double peak = learn::sgemmGflops(4096, cores);
   const auto dir = std::filesystem::temp_directory_path() / ("pixelcloth-bench-motion-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  sim::GenerateOptions generate;
-  generate.count = 2;
-  generate.seed = 1;
-  sim::generateDataset(dir / "data", generate);
-  learn::TrainOptions options;
-  options.model.width = 1;
-  options.epochs = 1;
-  options.batch = 2;
-  learn::train(dir / "data", dir / "model_w1", options);
+  trainOnTwoShirts(dir, 1);
   const Body body = data::loadDatasetBody(dir / "data");
   const motion::AnimatedScene scene = eval::sampledMotion(body, 10, 30, 30, 7);
   motion::writeAnimatedGlb(dir / "clip.glb", scene);
@@ -114,8 +120,8 @@ void benchMotion(const FigureSink& sink) {
 
   // The model loads once per call of predict, whatever it predicts; it is timed apart.
   auto start = std::chrono::steady_clock::now();
-  auto model = std::make_unique<learn::TrainedModel>(dir / "model_w1",
-                                                     data::datasetGarment(data::readDatasetInfo(dir / "data")));
+  auto model =
+      std::make_unique<learn::TrainedModel>(dir / "model", data::datasetGarment(data::readDatasetInfo(dir / "data")));
   const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   start = std::chrono::steady_clock::now();
   const motion::Clip clip = motion::readClip(dir / "clip.glb");
@@ -128,7 +134,7 @@ void benchMotion(const FigureSink& sink) {
 
   // The decoders alone on the same poses, 16 at a time, from a model loaded afresh: the first batch of each size
   // makes the oneDNN primitives, as it did in the path.
-  const learn::TrainedModel fresh(dir / "model_w1", inputs.data.garment);
+  const learn::TrainedModel fresh(dir / "model", inputs.data.garment);
   start = std::chrono::steady_clock::now();
   for (int first = 0; first < frames; first += 16)
     fresh.predict(inputs.data.inputs.middleRows(first, std::min(16, frames - first)));
@@ -153,16 +159,7 @@ void benchMotion(const FigureSink& sink) {
 /// by the oneDNN engine and their crops back to vertices). The steps around inference do not depend on the width.
 void benchFrameToGarment(const FigureSink& sink, int repeats, double peak) {
   const auto dir = std::filesystem::temp_directory_path() / ("pixelcloth-bench-model-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  sim::GenerateOptions generate;
-  generate.count = 2;
-  generate.seed = 1;
-  sim::generateDataset(dir / "data", generate);
-  learn::TrainOptions options;
-  options.model.width = 0.25;
-  options.epochs = 1;
-  options.batch = 2;
-  learn::train(dir / "data", dir / "model", options);
+  trainOnTwoShirts(dir, 0.25);
   const data::DatasetInfo info = data::readDatasetInfo(dir / "data");
   const Garment shirt = data::datasetGarment(info);
   const Body body = data::loadDatasetBody(dir / "data");

@@ -311,28 +311,32 @@ Motion retarget(const Clip& clip, const body::Skeleton& skeleton, const JointMap
   return motion;
 }
 
-std::vector<Eigen::MatrixX3d> withRootMotion(const std::vector<Eigen::MatrixX3d>& frames, const Motion& motion,
-                                             const Eigen::Vector3d& rootPosition) {
+namespace {
+/// Each frame turned about `rootPosition` by the clip's root rotation and shifted by its displacement, or (inverse)
+/// the way back.
+std::vector<Eigen::MatrixX3d> movedByRoot(const std::vector<Eigen::MatrixX3d>& frames, const Motion& motion,
+                                          const Eigen::Vector3d& rootPosition, bool inverse) {
   PIXELCLOTH_CHECK(static_cast<int>(frames.size()) == motion.frames(),
                    "root motion: " << frames.size() << " frames for a motion of " << motion.frames());
   std::vector<Eigen::MatrixX3d> out(frames.size());
   for (size_t f = 0; f < frames.size(); ++f) {
-    const Eigen::RowVector3d shift = rootPosition.transpose() + motion.rootTranslations.row(f);
-    out[f] = ((frames[f].rowwise() - rootPosition.transpose()) * motion.rootRotations[f].transpose()).rowwise() + shift;
+    const Eigen::RowVector3d rest = rootPosition.transpose(), moved = rest + motion.rootTranslations.row(f);
+    const Eigen::Matrix3d& R = motion.rootRotations[f];
+    out[f] = inverse ? Eigen::MatrixX3d(((frames[f].rowwise() - moved) * R).rowwise() + rest)
+                     : Eigen::MatrixX3d(((frames[f].rowwise() - rest) * R.transpose()).rowwise() + moved);
   }
   return out;
+}
+}  // namespace
+
+std::vector<Eigen::MatrixX3d> withRootMotion(const std::vector<Eigen::MatrixX3d>& frames, const Motion& motion,
+                                             const Eigen::Vector3d& rootPosition) {
+  return movedByRoot(frames, motion, rootPosition, false);
 }
 
 std::vector<Eigen::MatrixX3d> withoutRootMotion(const std::vector<Eigen::MatrixX3d>& frames, const Motion& motion,
                                                 const Eigen::Vector3d& rootPosition) {
-  PIXELCLOTH_CHECK(static_cast<int>(frames.size()) == motion.frames(),
-                   "root motion: " << frames.size() << " frames for a motion of " << motion.frames());
-  std::vector<Eigen::MatrixX3d> out(frames.size());
-  for (size_t f = 0; f < frames.size(); ++f) {
-    const Eigen::RowVector3d shift = rootPosition.transpose() + motion.rootTranslations.row(f);
-    out[f] = ((frames[f].rowwise() - shift) * motion.rootRotations[f]).rowwise() + rootPosition.transpose();
-  }
-  return out;
+  return movedByRoot(frames, motion, rootPosition, true);
 }
 
 void writeMotion(const fs::path& folder, const Motion& motion) {

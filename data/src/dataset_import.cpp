@@ -3,11 +3,12 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
-#include <sstream>
 
+#include "dataset_internal.h"
 #include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/body/skeleton.h"
 #include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/csv.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/geometry.h"
 #include "pixelcloth/core/json_io.h"
@@ -15,7 +16,6 @@
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/data/dataset.h"
-#include "dataset_internal.h"
 
 namespace pixelcloth::data {
 
@@ -60,12 +60,6 @@ Eigen::VectorXf checkedPose(const Eigen::VectorXf& values, int poseSize, const s
                    context << ": " << beyond << "; --clamp-to-limits clamps every pose into the limits");
   ++clamped;
   return pose.clampedToLimits().toVector().head(poseSize);
-}
-
-std::string trim(const std::string& s) {
-  const size_t a = s.find_first_not_of(" \t\r\n");
-  if (a == std::string::npos) return "";
-  return s.substr(a, s.find_last_not_of(" \t\r\n") - a + 1);
 }
 
 }  // namespace
@@ -131,12 +125,9 @@ std::vector<Eigen::VectorXf> readPoseSequence(const fs::path& path, int poseSize
     PIXELCLOTH_CHECK(in, file << ": cannot open for reading");
     std::string line;
     for (int lineNumber = 1; std::getline(in, line); ++lineNumber) {
-      line = trim(line);
+      line = core::trim(line);
       if (line.empty() || line[0] == '#') continue;
-      std::vector<std::string> fields;
-      std::stringstream stream(line);
-      for (std::string field; std::getline(stream, field, ',');) fields.push_back(trim(field));
-      if (!line.empty() && line.back() == ',') fields.emplace_back();
+      const std::vector<std::string> fields = core::csvFields(line);
       std::vector<float> values;
       bool numeric = true;
       for (const std::string& field : fields) {

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/csv.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/npy.h"
 
@@ -22,12 +23,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 std::string lower(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
   return text;
-}
-
-std::string trim(const std::string& text) {
-  const size_t first = text.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return "";
-  return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
 }
 
 /// Every marker of every frame is either seen (three finite numbers) or not (three NaN).
@@ -82,12 +77,9 @@ MarkerTrajectories readCsvTrajectories(const fs::path& path, int markers, const 
   std::string line;
   bool first = true;
   for (int lineNumber = 1; std::getline(in, line); ++lineNumber) {
-    line = trim(line);
+    line = core::trim(line);
     if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> fields;
-    std::stringstream stream(line);
-    for (std::string field; std::getline(stream, field, ',');) fields.push_back(trim(field));
-    if (line.back() == ',') fields.emplace_back();
+    const std::vector<std::string> fields = core::csvFields(line);
     Eigen::VectorXd values(fields.size());
     bool numeric = true;
     for (size_t k = 0; k < fields.size() && numeric; ++k) {

@@ -1,6 +1,8 @@
 #include "pixelcloth/eval/motion_prediction.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <set>
 #include <unordered_map>
@@ -37,7 +39,9 @@ MotionPrediction writeGarmentSequence(const body::Body& body, const std::vector<
   result.garment = std::move(garment);
   for (const body::Pose& pose : poses) result.body.push_back(body.posedVertices(pose));
   result.metrics = motion::temporalMetrics(result.garment, result.body, body.mesh.F, clip.fps);
-  result.metrics.seamGapCm = std::move(seamGapCm);
+  // A whole-garment model has no seams between networks: no gap measured.
+  if (std::any_of(seamGapCm.begin(), seamGapCm.end(), [](double gap) { return std::isfinite(gap); }))
+    result.metrics.seamGapCm = std::move(seamGapCm);
 
   // Both moved as the clip's root moves.
   const Eigen::Vector3d root = body.skeleton.positions.row(body.skeleton.index("root")).transpose();

@@ -275,6 +275,8 @@ TEST_F(LearnCli, AMotionClipBecomesAnAnimatedGarment) {
   EXPECT_GT(metrics["body_jitter_cm"]["mean"].get<double>(), 0);
   EXPECT_TRUE(metrics["garment_jitter_cm"]["per_frame"][0].is_null());  // no neighbours before the first frame
   EXPECT_EQ(metrics["inside_body"]["vertices_per_frame"].size(), 4u);
+  EXPECT_GT(metrics["seam_gap_cm"]["mean"].get<double>(), 0);  // 28 decoders, one epoch: they disagree
+  EXPECT_EQ(metrics["seam_gap_cm"]["per_frame"].size(), 4u);
 
   // numpy reads the caches as Blender's Mesh Cache modifier would: header, then frames x points x 3 float32.
   const pixelcloth::core::Mesh frame2 = pixelcloth::core::readMesh(out / "frames" / "garment_0002.obj");

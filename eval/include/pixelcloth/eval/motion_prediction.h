@@ -32,7 +32,8 @@ struct MotionPrediction {
 /// Writes the garment sequence `garment` (per frame of `clip`, #G x 3 in the body's root frame; faces and UVs of
 /// `garmentMesh`) on `body` posed as `poses` into `out`: animation.glb, frames/garment_NNNN.obj, garment.obj and
 /// body.obj (frame 0), garment.pc2 and body.pc2 (the clip's root motion applied), metrics.json (the temporal measures
-/// with `seamGapCm` per frame when not empty, `info` added). `predictSeconds` goes into the result and metrics.json.
+/// with `seamGapCm` per frame when some frame has one, `info` added). `predictSeconds` goes into the result and
+/// metrics.json.
 MotionPrediction writeGarmentSequence(const body::Body& body, const std::vector<body::Pose>& poses,
                                       const core::Mesh& garmentMesh, std::vector<Eigen::MatrixX3d> garment,
                                       std::vector<double> seamGapCm, double predictSeconds, const motion::Motion& clip,

@@ -388,7 +388,8 @@ void registerReconstruct(CLI::App& app) {
       "Rebuild garments from sparse markers: length-preserving spline cage, procedural patch fill. Either "
       "--markers M.json --pose P.json --out garment.obj, or --dataset DIR --split S --out DIR (every method, "
       "metrics.json, error maps), or --dataset DIR --write-base DIR (base offsets and marker features of every row, "
-      "for the learned refinement; docs/reconstruction.md)");
+      "for the learned refinement; docs/reconstruction.md), or --markers-sequence T.npy --markers M.json --motion M "
+      "--out DIR (every frame of a capture, as predict --motion writes them; docs/motion.md)");
   verb->add_option("--markers", args->markers, "Marker file with positions (pixelcloth markers; docs/markers.md)");
   verb->add_option("--pose", args->pose, "Pose of the body (JSON, as pixelcloth pose reads it)");
   verb->add_option("--body", args->body, "Body folder (default: the built-in mannequin, dressed on the fly)");
@@ -446,9 +447,10 @@ void registerReconstruct(CLI::App& app) {
                    "frame rebuilt and written as a sequence (animation.glb, OBJ frames, PC2 caches, metrics.json; "
                    "docs/motion.md)");
   verb->add_option("--motion", args->motion, "--markers-sequence: the body's motion (pixelcloth motion import)");
-  verb->add_option("--model", args->model,
-                   "--markers-sequence: a residual model (train --base) that refines every frame; its dataset holds "
-                   "the body and garment");
+  verb->add_option(
+      "--model", args->model,
+      "--markers-sequence: a residual model (train --residual) that refines every frame; its dataset holds "
+      "the body and garment");
   addEngineOption(*verb, args->engine);
   addStitchOptions(*verb, args->stitch, false);
   verb->add_flag("--quiet", args->quiet, "No progress on stderr");

@@ -198,7 +198,7 @@ void addCaptureBases(learn::PredictionInputs& inputs, const std::vector<cage::Ma
                    context << ": " << captured.size() << " frames of markers for " << frames << " poses");
   PIXELCLOTH_CHECK(inputs.model->residual(), "--model " << inputs.model->folder().string()
                                                         << ": a model that takes the pose alone; a capture is "
-                                                           "refined by a residual model (train --base)");
+                                                           "refined by a residual model (train --residual)");
   const recon::CaptureRebuilder rebuilder(inputs.model->baseFolder(), inputs.data.info.where());
   std::vector<Eigen::MatrixX3d> offsets(frames);
   Eigen::MatrixXd features(frames, 3 * static_cast<Eigen::Index>(rebuilder.definition().markers.size()));

@@ -13,31 +13,44 @@
 
 namespace pixelcloth::viz {
 
-core::RgbImage renderGarmentStrip(const Eigen::MatrixX3i& bodyFaces, const std::vector<Eigen::MatrixX3d>& body,
-                                  const core::Mesh& garment, const std::vector<Eigen::MatrixX3d>& garmentFrames,
-                                  double fps, int count) {
-  PIXELCLOTH_CHECK(!body.empty() && body.size() == garmentFrames.size() && count >= 1,
-                   "garment strip: " << body.size() << " body frames, " << garmentFrames.size() << " garment frames");
+View frameStripView() {
   View view;
   view.width = 240;
   view.height = 320;
   view.azimuthDegrees = 20;
   view.elevationDegrees = 10;
-  for (const Eigen::MatrixX3d& frame : body)
-    for (Eigen::Index i = 0; i < frame.rows(); i += 7) view.bounds.extend(frame.row(i).transpose().eval());
-  const int n = std::min<int>(count, static_cast<int>(body.size()));
+  return view;
+}
+
+core::RgbImage renderFrameStrip(int frames, int count, double fps, const std::function<core::RgbImage(int)>& render) {
+  PIXELCLOTH_CHECK(frames >= 1 && count >= 1 && fps > 0,
+                   "frame strip: " << count << " of " << frames << " frames at " << fps << " fps");
+  const int n = std::min(count, frames);
   std::vector<core::RgbImage> pictures;
   for (int k = 0; k < n; ++k) {
-    const int f = n == 1 ? 0 : static_cast<int>(std::lround(k * (body.size() - 1.0) / (n - 1)));
-    const RenderMesh skin{body[f], bodyFaces, {}, {}, {0.87, 0.76, 0.66}};
-    const RenderMesh cloth{garmentFrames[f], garment.F, {}, {}, {0.25, 0.45, 0.75}};
-    core::RgbImage picture = renderMeshes({skin, cloth}, view);
+    const int f = n == 1 ? 0 : static_cast<int>(std::lround(k * (frames - 1.0) / (n - 1)));
+    core::RgbImage picture = render(f);
     std::ostringstream label;
-    label << "frame " << f << "  " << std::fixed << std::setprecision(2) << f / fps << " s";
+    label << "frame " << f << ", " << std::fixed << std::setprecision(2) << f / fps << " s";
     drawText(picture, {8, 8}, label.str(), core::Color{40, 40, 40}, 1);
     pictures.push_back(std::move(picture));
   }
   return contactSheet(pictures, n);
+}
+
+core::RgbImage renderGarmentStrip(const Eigen::MatrixX3i& bodyFaces, const std::vector<Eigen::MatrixX3d>& body,
+                                  const core::Mesh& garment, const std::vector<Eigen::MatrixX3d>& garmentFrames,
+                                  double fps, int count) {
+  PIXELCLOTH_CHECK(!body.empty() && body.size() == garmentFrames.size() && count >= 1,
+                   "garment strip: " << body.size() << " body frames, " << garmentFrames.size() << " garment frames");
+  View view = frameStripView();
+  for (const Eigen::MatrixX3d& frame : body)
+    for (Eigen::Index i = 0; i < frame.rows(); i += 7) view.bounds.extend(frame.row(i).transpose().eval());
+  return renderFrameStrip(static_cast<int>(body.size()), count, fps, [&](int f) {
+    const RenderMesh skin{body[f], bodyFaces, {}, {}, {0.87, 0.76, 0.66}};
+    const RenderMesh cloth{garmentFrames[f], garment.F, {}, {}, {0.25, 0.45, 0.75}};
+    return renderMeshes({skin, cloth}, view);
+  });
 }
 
 core::RgbImage renderTemporalMetrics(const motion::TemporalMetrics& metrics) {

@@ -14,6 +14,7 @@
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/patches/frame.h"
 #include "pixelcloth/viz/draw.h"
+#include "pixelcloth/viz/motion_pictures.h"
 #include "pixelcloth/viz/pictures.h"
 #include "pixelcloth/viz/previews.h"
 #include "pixelcloth/viz/render.h"
@@ -66,25 +67,12 @@ void writePosedBodies(const std::filesystem::path& folder, const Body& body, con
 
 core::RgbImage renderPoseStrip(const Body& body, const std::vector<Pose>& poses, double fps, int count) {
   PIXELCLOTH_CHECK(!poses.empty() && count >= 1, "pose strip: no poses");
-  View view;
-  view.width = 240;
-  view.height = 320;
-  view.azimuthDegrees = 20;
-  view.elevationDegrees = 10;
+  View view = frameStripView();
   for (int i = 0; i < body.mesh.numVertices(); ++i) view.bounds.extend(body.mesh.V.row(i).transpose().eval());
   view.bounds.extend(Eigen::Vector3d(view.bounds.center().x(), view.bounds.max().y() + 0.3, 0.6));
   view.bounds.extend(Eigen::Vector3d(view.bounds.center().x(), view.bounds.min().y(), -0.6));
-  const int n = std::min<int>(count, static_cast<int>(poses.size()));
-  std::vector<RgbImage> pictures;
-  for (int k = 0; k < n; ++k) {
-    const int frame = n == 1 ? 0 : static_cast<int>(std::lround(k * (poses.size() - 1.0) / (n - 1)));
-    RgbImage picture = renderPosedBody(body, poses[frame], view);
-    std::ostringstream label;
-    label << "frame " << frame << ", " << std::fixed << std::setprecision(2) << frame / fps << " s";
-    drawText(picture, {8, 8}, label.str(), Color{40, 40, 40}, 1);
-    pictures.push_back(std::move(picture));
-  }
-  return contactSheet(pictures, n);
+  return renderFrameStrip(static_cast<int>(poses.size()), count, fps,
+                          [&](int frame) { return renderPosedBody(body, poses[frame], view); });
 }
 
 core::RgbImage renderClothImage(const ClothImage& image, const PreviewOptions& options) {

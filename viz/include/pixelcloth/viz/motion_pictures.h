@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,8 +13,16 @@
 #include "pixelcloth/core/mesh.h"
 #include "pixelcloth/eval/motion_prediction.h"
 #include "pixelcloth/motion/sequence.h"
+#include "pixelcloth/viz/render.h"
 
 namespace pixelcloth::viz {
+
+/// The view of the frame strips: 240 x 320, from 20 degrees to the side and 10 above; bounds left to the caller.
+View frameStripView();
+
+/// `count` of `frames` frames spread evenly from the first to the last, each drawn by `render(frame)` and labelled
+/// with its number and its time at `fps`, side by side.
+core::RgbImage renderFrameStrip(int frames, int count, double fps, const std::function<core::RgbImage(int)>& render);
 
 /// `count` frames spread evenly from the first to the last, side by side on one scale: the body (`bodyFaces` with
 /// each frame's positions) and the garment (`garment`'s faces and panels) over it, each labelled with its frame and

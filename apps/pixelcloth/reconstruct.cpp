@@ -221,13 +221,8 @@ void runFromMarkerSequence(const ReconstructArgs& args) {
                                                                          "for it use predict --motion");
     body = data::loadDatasetBody(inputs.data.info.where());
     garmentMesh = inputs.data.garment.mesh;
-    const cage::Cage cage = cage::garmentCage(inputs.data.garment);
-    definition.validate(inputs.data.garment, cage, args.markers, false);
-    const auto start = std::chrono::steady_clock::now();
-    const std::vector<cage::MarkerSet> captured = eval::capturedFrames(
-        definition, cage, trajectories, clip, body.skeleton.positions.row(body.skeleton.index("root")).transpose());
-    eval::addCaptureBases(inputs, captured, args.threads, args.markersSequence);
-    const double baseSeconds = core::secondsSince(start);
+    const double baseSeconds =
+        eval::addTrajectoryBases(inputs, body, definition, args.markers, trajectories, clip, args.threads);
     const std::vector<stitch::Stitcher> stitchers = makeStitchers(args.stitch, inputs);
     result = eval::predictMotion(inputs, stitchers.front(), clip, args.out, info);
     result.predictSeconds += baseSeconds;

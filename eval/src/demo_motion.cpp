@@ -1,7 +1,6 @@
 // The demo's motion: a clip of its own, out as a GLB, in again through assimp, and through the patch decoders.
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <chrono>
 
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/cage/markers.h"
@@ -73,9 +72,8 @@ DemoMotion runDemoMotion(const fs::path& report, const DemoPlan& plan) {
   motion::writeMarkerTrajectories(trajectories.source, trajectories);
 
   // In again as pixelcloth reconstruct --markers-sequence --model reads them.
-  const auto start = std::chrono::steady_clock::now();
-  addCaptureBases(residual, capturedFrames(definition, cage, trajectories, out.motion, root), 0, trajectories.source);
-  const double baseSeconds = core::secondsSince(start);
+  const double baseSeconds =
+      addTrajectoryBases(residual, body, definition, "motion/markers/markers.json", trajectories, out.motion, 0);
   out.reconstruction =
       predictMotion(residual, mean, out.motion, out.reconstructed,
                     {{"model", "model_residual_patch"}, {"markers_sequence", "motion/markers/trajectories.npy"}});

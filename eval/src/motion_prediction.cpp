@@ -7,6 +7,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
@@ -212,6 +213,17 @@ void addCaptureBases(learn::PredictionInputs& inputs, const std::vector<cage::Ma
   });
   progress.finish();
   learn::addPoseBases(inputs, offsets, features);
+}
+
+double addTrajectoryBases(learn::PredictionInputs& inputs, const body::Body& body, const cage::MarkerSet& definition,
+                          const std::string& markersName, const motion::MarkerTrajectories& trajectories,
+                          const motion::Motion& clip, int threads) {
+  const cage::Cage cage = cage::garmentCage(inputs.data.garment);
+  definition.validate(inputs.data.garment, cage, markersName, false);
+  const auto start = std::chrono::steady_clock::now();
+  const Eigen::Vector3d root = body.skeleton.positions.row(body.skeleton.index("root")).transpose();
+  addCaptureBases(inputs, capturedFrames(definition, cage, trajectories, clip, root), threads, trajectories.source);
+  return core::secondsSince(start);
 }
 
 }  // namespace pixelcloth::eval

@@ -77,4 +77,11 @@ std::vector<Eigen::MatrixX3d> reconstructFrames(const recon::GarmentReconstructo
 void addCaptureBases(learn::PredictionInputs& inputs, const std::vector<cage::MarkerSet>& captured, int threads,
                      const std::string& context);
 
+/// addCaptureBases of a capture's trajectories: `definition` (the marker file, named `markersName`) checked against
+/// the model's garment, `trajectories` brought into the root frame of `body` (the model's dataset's) by capturedFrames.
+/// Returns the seconds the bases took.
+double addTrajectoryBases(learn::PredictionInputs& inputs, const body::Body& body, const cage::MarkerSet& definition,
+                          const std::string& markersName, const motion::MarkerTrajectories& trajectories,
+                          const motion::Motion& clip, int threads);
+
 }  // namespace pixelcloth::eval

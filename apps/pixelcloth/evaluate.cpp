@@ -10,10 +10,11 @@
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/image.h"
 #include "pixelcloth/core/json_io.h"
+#include "pixelcloth/core/npy.h"
+#include "pixelcloth/data/dataset.h"
 #include "pixelcloth/viz/pictures.h"
 #include "pixelcloth/viz/previews.h"
 #include "pixelcloth/viz/seam_report.h"
-#include "pixelcloth/data/dataset.h"
 #include "prediction_inputs.h"
 #include "verbs.h"
 
@@ -80,7 +81,17 @@ void runEvaluate(const EvaluateArgs& args) {
   metrics["architecture"] = learn::architectureName(inputs.model->architecture());
   metrics["residual"] = inputs.model->residual();
   metrics["dataset"] = args.dataset;
+  // The first mode's garments, for pixelcloth view: predictions.npy (samples x #V x 3, float32) and their samples.
+  metrics["rows"] = nlohmann::json::array();
+  std::vector<float> predicted;
+  for (size_t k = 0; k < evaluation.rows.size(); ++k) {
+    metrics["rows"].push_back(inputs.data.info.settings.first() + evaluation.rows[k]);
+    const Eigen::MatrixX3f& p = evaluation.positions[k];
+    for (Eigen::Index v = 0; v < p.rows(); ++v) predicted.insert(predicted.end(), {p(v, 0), p(v, 1), p(v, 2)});
+  }
   core::ensureOutputFolder(args.out);
+  core::writeNpy(std::filesystem::path(args.out) / "predictions.npy", predicted,
+                 {static_cast<std::int64_t>(evaluation.rows.size()), inputs.data.garment.mesh.numVertices(), 3});
   core::writeJson(std::filesystem::path(args.out) / "metrics.json", metrics);
   // Blue 0, white 0.5, red 1 cm and more; below, the same stretched to the 95th percentile for models worse than that.
   std::ostringstream title, stretched;
@@ -108,7 +119,7 @@ void runEvaluate(const EvaluateArgs& args) {
       std::cout << " (marker reconstruction alone: " << m["base_vertex_error_cm"].get<double>() << " cm)";
     std::cout << "\n";
   }
-  std::cout << "-> " << args.out << "/{metrics.json, error_maps.png, report.md}\n";
+  std::cout << "-> " << args.out << "/{metrics.json, predictions.npy, error_maps.png, report.md}\n";
 }
 }  // namespace
 
@@ -124,7 +135,8 @@ void registerEvaluate(CLI::App& app) {
   verb->add_option("--base", args->base,
                    "Residual models: the dataset's base folder (default: the one the model was trained with)");
   verb->add_option("--out", args->out,
-                   "Output folder: metrics.json, error_maps.png, report.md (stitch modes, seams per curve, the PCA "
+                   "Output folder: metrics.json, predictions.npy (the first mode's garments, for pixelcloth view), "
+                   "error_maps.png, report.md (stitch modes, seams per curve, the PCA "
                    "sweep, error maps, the worst seams) and its pictures")
       ->required();
   addEngineOption(*verb, args->engine);

@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerPca(app);
   pixelcloth::apps::registerStitch(app);
   pixelcloth::apps::registerPlot(app);
+  pixelcloth::apps::registerView(app);
   pixelcloth::apps::registerExperiments(app);
   pixelcloth::apps::registerMotion(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();

@@ -64,9 +64,13 @@ void runPredictMotion(const PredictArgs& args) {
                                                   << " is a residual model, which needs the garment's markers in "
                                                      "every frame: use reconstruct --markers-sequence");
   const std::vector<stitch::Stitcher> stitchers = makeStitchers(args.stitch, inputs);
-  const eval::MotionPrediction result = eval::predictMotion(
-      inputs, stitchers.front(), clip, args.out,
-      {{"model", args.model}, {"motion", args.motion}, {"stitch", args.stitch.modes}, {"engine", args.engine}});
+  const eval::MotionPrediction result =
+      eval::predictMotion(inputs, stitchers.front(), clip, args.out,
+                          {{"model", args.model},
+                           {"motion", args.motion},
+                           {"stitch", args.stitch.modes},
+                           {"engine", args.engine},
+                           {"dataset", fs::absolute(inputs.data.folder).lexically_normal().string()}});
   viz::writeSequencePictures(args.out, data::loadDatasetBody(inputs.data.folder).mesh.F, inputs.data.garment.mesh,
                              result);
   std::cout << "predict: " << sequenceSummary(result, args.out) << "\n";
@@ -98,17 +102,36 @@ void runPredict(const PredictArgs& args) {
   core::ensureOutputFolder(args.out);
   const patches::ClothImager imager(inputs.data.garment);
   std::cout << std::fixed << std::setprecision(3);
+  // Each garment's posed body beside it, and prediction.json listing both, for pixelcloth view.
+  const body::Body body = data::loadDatasetBody(inputs.data.info.where());
+  nlohmann::json description = {{"format", "pixelcloth.prediction"},
+                                {"model", args.model},
+                                {"dataset", fs::absolute(inputs.data.folder).lexically_normal().string()},
+                                {"garments", nlohmann::json::array()}};
   for (size_t k = 0; k < rows.size(); ++k) {
     char name[32];
     std::snprintf(name, sizeof(name), "sample_%06d", args.samples.empty() ? 0 : args.samples[k]);
     const std::string stem = args.pose.empty() ? name : "garment";
     writeGarment(args.out, stem, inputs.data.garment, imager, predicted.positions[k], inputs.data.frames[rows[k]]);
+    core::Mesh posed = body.mesh;
+    posed.V = body.posedVertices(
+        body::Pose::fromLeading(inputs.data.inputs.row(rows[k]).head(inputs.data.poseSize).transpose()));
+    const std::string bodyName = args.pose.empty() ? std::string(name) + "_body.obj" : "body.obj";
+    core::writeMesh(fs::path(args.out) / bodyName, posed);
+    nlohmann::json entry = {{"file", stem + ".obj"}, {"body", bodyName}};
+    if (args.pose.empty()) entry["sample"] = args.samples[k];
+    if (!args.markers.empty()) {
+      core::writeTextAtomically(fs::path(args.out) / "markers.json", core::readTextFile(args.markers));
+      entry["markers"] = "markers.json";
+    }
+    description["garments"].push_back(entry);
     std::cout << (fs::path(args.out) / (stem + ".obj")).string();
     if (args.pose.empty())
       std::cout << ": " << core::meanVertexErrorCm(predicted.positions[k], inputs.data.truth[rows[k]])
                 << " cm mean vertex error";
     std::cout << "\n";
   }
+  core::writeJson(fs::path(args.out) / "prediction.json", description);
 }
 }  // namespace
 
@@ -129,7 +152,9 @@ void registerPredict(CLI::App& app) {
   verb->add_option("--samples", args->samples, "With --dataset: sample indices, e.g. 0,5,17")->delimiter(',');
   verb->add_option("--base", args->base,
                    "Residual models: the dataset's base folder (default: the one the model was trained with)");
-  verb->add_option("--out", args->out, "Output folder: garment.obj/.exr/.png, or sample_NNNNNN.* per sample")
+  verb->add_option("--out", args->out,
+                   "Output folder: garment.obj/.exr/.png and body.obj (the posed body), or sample_NNNNNN.* and "
+                   "sample_NNNNNN_body.obj per sample; prediction.json lists them (pixelcloth view reads it)")
       ->required();
   addEngineOption(*verb, args->engine);
   addStitchOptions(*verb, args->stitch, false);

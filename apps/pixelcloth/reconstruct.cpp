@@ -204,11 +204,11 @@ void runFromMarkerSequence(const ReconstructArgs& args) {
   const cage::MarkerSet definition = cage::readMarkers(args.markers);
   const motion::MarkerTrajectories trajectories =
       motion::readMarkerTrajectories(args.markersSequence, static_cast<int>(definition.markers.size()), args.markers);
-  const nlohmann::json info = {{"markers", args.markers},
-                               {"markers_sequence", args.markersSequence},
-                               {"motion", args.motion},
-                               {"method", args.model.empty() ? args.method : "spline_anisotropic"},
-                               {"model", args.model.empty() ? nlohmann::json() : nlohmann::json(args.model)}};
+  nlohmann::json info = {{"markers", args.markers},
+                         {"markers_sequence", args.markersSequence},
+                         {"motion", args.motion},
+                         {"method", args.model.empty() ? args.method : "spline_anisotropic"},
+                         {"model", args.model.empty() ? nlohmann::json() : nlohmann::json(args.model)}};
   eval::MotionPrediction result;
   body::Body body;
   core::Mesh garmentMesh;
@@ -221,6 +221,7 @@ void runFromMarkerSequence(const ReconstructArgs& args) {
                                                                          "for it use predict --motion");
     body = data::loadDatasetBody(inputs.data.info.where());
     garmentMesh = inputs.data.garment.mesh;
+    info["dataset"] = fs::absolute(inputs.data.folder).lexically_normal().string();
     const double baseSeconds =
         eval::addTrajectoryBases(inputs, body, definition, args.markers, trajectories, clip, args.threads);
     const std::vector<stitch::Stitcher> stitchers = makeStitchers(args.stitch, inputs);

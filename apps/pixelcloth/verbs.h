@@ -46,6 +46,8 @@ void registerPca(CLI::App& app);
 void registerStitch(CLI::App& app);
 /// `plot`: a line chart of a small JSON table.
 void registerPlot(CLI::App& app);
+/// `view`: an output folder as a static three.js page (viz/viewer.h).
+void registerView(CLI::App& app);
 void registerExperiments(CLI::App& app);
 /// `motion import`: a motion-capture clip retargeted to the body (motion/).
 void registerMotion(CLI::App& app);

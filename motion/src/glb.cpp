@@ -67,9 +67,42 @@ class GltfWriter {
     return accessor(values, TINYGLTF_COMPONENT_TYPE_FLOAT, type, count);
   }
 
+  int colors(const Eigen::MatrixX3f& C) {
+    std::vector<float> values(C.size());
+    for (Eigen::Index i = 0; i < C.rows(); ++i)
+      for (int c = 0; c < 3; ++c) values[3 * i + c] = C(i, c);
+    return accessor(values, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, C.rows(), TINYGLTF_TARGET_ARRAY_BUFFER);
+  }
+
  private:
   tinygltf::Model& model_;
 };
+
+/// The weights of a mesh with one morph target per frame after the first, keyed so that frame f shows target f - 1
+/// alone (frames x (frames - 1) values).
+std::vector<float> frameMorphWeights(int frames) {
+  std::vector<float> morph(static_cast<size_t>(frames) * (frames - 1), 0.0f);
+  for (int f = 1; f < frames; ++f) morph[static_cast<size_t>(f) * (frames - 1) + (f - 1)] = 1.0f;
+  return morph;
+}
+
+/// Key times of `frames` frames at `fps`, as an animation sampler's input accessor.
+int frameTimes(GltfWriter& writer, tinygltf::Model& model, int frames, double fps) {
+  std::vector<float> times(frames);
+  for (int f = 0; f < frames; ++f) times[f] = static_cast<float>(f / fps);
+  const int input = writer.floats(times, TINYGLTF_TYPE_SCALAR, frames);
+  model.accessors[input].minValues = {times.front()};
+  model.accessors[input].maxValues = {times.back()};
+  return input;
+}
+
+std::string glbBytes(tinygltf::Model& model, const std::string& what) {
+  model.buffers[0].data.resize((model.buffers[0].data.size() + 3) / 4 * 4, 0);
+  std::ostringstream bytes;
+  tinygltf::TinyGLTF gltf;
+  PIXELCLOTH_CHECK(gltf.WriteGltfSceneToStream(&model, bytes, false, true), what << ": writing the GLB failed");
+  return bytes.str();
+}
 
 std::vector<float> quaternion(const Eigen::Matrix3d& r) {
   const Eigen::Quaterniond q(r);
@@ -189,11 +222,7 @@ void writeAnimatedGlb(const std::filesystem::path& path, const AnimatedScene& sc
   // The animation, keyed at every frame.
   tinygltf::Animation animation;
   animation.name = "motion";
-  std::vector<float> times(frames);
-  for (int f = 0; f < frames; ++f) times[f] = static_cast<float>(f / scene.fps);
-  const int input = writer.floats(times, TINYGLTF_TYPE_SCALAR, frames);
-  model.accessors[input].minValues = {times.front()};
-  model.accessors[input].maxValues = {times.back()};
+  const int input = frameTimes(writer, model, frames, scene.fps);
   auto channel = [&](int node, const std::string& pathName, const std::vector<float>& values, int type) {
     tinygltf::AnimationSampler sampler;
     sampler.input = input;
@@ -224,20 +253,75 @@ void writeAnimatedGlb(const std::filesystem::path& path, const AnimatedScene& sc
   }
   channel(root, "rotation", rootRotation, TINYGLTF_TYPE_VEC4);
   channel(root, "translation", rootTranslation, TINYGLTF_TYPE_VEC3);
-  if (scene.garment && frames > 1) {
-    std::vector<float> morph(static_cast<size_t>(frames) * (frames - 1), 0.0f);
-    for (int f = 1; f < frames; ++f) morph[static_cast<size_t>(f) * (frames - 1) + (f - 1)] = 1.0f;
-    channel(garmentNodeIndex, "weights", morph, TINYGLTF_TYPE_SCALAR);
-  }
+  if (scene.garment && frames > 1)
+    channel(garmentNodeIndex, "weights", frameMorphWeights(frames), TINYGLTF_TYPE_SCALAR);
   model.animations.push_back(animation);
-  model.buffers[0].data.resize((model.buffers[0].data.size() + 3) / 4 * 4, 0);
+  core::writeTextAtomically(path, glbBytes(model, path.string()));
+}
 
-  std::ostringstream bytes;
-  tinygltf::TinyGLTF gltf;
-  PIXELCLOTH_CHECK(gltf.WriteGltfSceneToStream(&model, bytes, false, true), path.string()
-                                                                                << ": writing the GLB failed");
-  const std::string data = bytes.str();
-  core::writeTextAtomically(path, data);
+std::string meshesGlb(const std::vector<GlbMesh>& meshes, double fps) {
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "pixelcloth";
+  GltfWriter writer(model);
+  tinygltf::Scene sceneNodes;
+  tinygltf::Animation animation;
+  animation.name = "frames";
+  int maxFrames = 1;
+  for (const GlbMesh& mesh : meshes) maxFrames = std::max(maxFrames, static_cast<int>(mesh.frames.size()));
+  const int input = maxFrames > 1 ? frameTimes(writer, model, maxFrames, fps) : -1;
+  for (const GlbMesh& mesh : meshes) {
+    const int frames = static_cast<int>(mesh.frames.size());
+    PIXELCLOTH_CHECK(frames >= 1, "glb mesh '" << mesh.name << "': no frames");
+    const Eigen::Index V = mesh.frames.front().rows();
+    for (int f = 0; f < frames; ++f)
+      PIXELCLOTH_CHECK(mesh.frames[f].rows() == V && mesh.frames[f].allFinite(),
+                       "glb mesh '" << mesh.name << "': frame " << f + 1 << " has " << mesh.frames[f].rows()
+                                    << " vertices (expected " << V << ") or positions that are not finite");
+    PIXELCLOTH_CHECK(mesh.faces.size() == 0 || (mesh.faces.minCoeff() >= 0 && mesh.faces.maxCoeff() < V),
+                     "glb mesh '" << mesh.name << "': a face names a vertex beyond its " << V);
+    tinygltf::Primitive primitive;
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    primitive.attributes["POSITION"] = writer.positions(mesh.frames.front());
+    primitive.indices = writer.indices(mesh.faces);
+    for (const auto& [name, C] : mesh.colors) {
+      PIXELCLOTH_CHECK(C.rows() == V && C.allFinite(), "glb mesh '" << mesh.name << "': colours " << name << " for "
+                                                                    << C.rows() << " vertices (expected " << V << ")");
+      primitive.attributes[name] = writer.colors(C);
+    }
+    for (int f = 1; f < frames; ++f)
+      primitive.targets.push_back({{"POSITION", writer.positions(mesh.frames[f] - mesh.frames.front())}});
+    tinygltf::Mesh gltfMesh;
+    gltfMesh.name = mesh.name;
+    gltfMesh.primitives.push_back(primitive);
+    if (frames > 1) gltfMesh.weights.assign(frames - 1, 0.0);
+    model.meshes.push_back(gltfMesh);
+    tinygltf::Node node;
+    node.name = mesh.name;
+    node.mesh = static_cast<int>(model.meshes.size()) - 1;
+    model.nodes.push_back(node);
+    const int nodeIndex = static_cast<int>(model.nodes.size()) - 1;
+    sceneNodes.nodes.push_back(nodeIndex);
+    if (frames > 1) {
+      PIXELCLOTH_CHECK(frames == maxFrames, "glb mesh '" << mesh.name << "': " << frames << " frames, others "
+                                                         << maxFrames << " (expected one frame or as many)");
+      tinygltf::AnimationSampler sampler;
+      sampler.input = input;
+      const std::vector<float> weights = frameMorphWeights(frames);
+      sampler.output = writer.floats(weights, TINYGLTF_TYPE_SCALAR, weights.size());
+      sampler.interpolation = "STEP";
+      animation.samplers.push_back(sampler);
+      tinygltf::AnimationChannel channel;
+      channel.sampler = static_cast<int>(animation.samplers.size()) - 1;
+      channel.target_node = nodeIndex;
+      channel.target_path = "weights";
+      animation.channels.push_back(channel);
+    }
+  }
+  model.scenes.push_back(sceneNodes);
+  model.defaultScene = 0;
+  if (!animation.channels.empty()) model.animations.push_back(animation);
+  return glbBytes(model, "glb");
 }
 
 }  // namespace pixelcloth::motion

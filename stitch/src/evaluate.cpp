@@ -81,6 +81,7 @@ struct Tally {
   SeamMetrics seams;
   Eigen::VectorXd vertexErrorCm;
   double cosine = 0, maxError = 0;
+  std::vector<Eigen::MatrixX3f> positions;
 };
 
 }  // namespace
@@ -172,6 +173,7 @@ std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::
       stitchChunk(modes[m], predictions, data, chunk, predicted);
       Tally& tally = tallies[m];
       for (size_t k = 0; k < chunk.size(); ++k) {
+        tally.positions.push_back(predicted.positions[k].cast<float>());
         const Eigen::MatrixX3d truth = data.truth[chunk[k]].cast<double>();
         const Eigen::VectorXd error = 100 * (predicted.positions[k] - truth).rowwise().norm();
         tally.vertexErrorCm += error;
@@ -200,6 +202,8 @@ std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::
     Evaluation evaluation;
     if (modes[m]) evaluation.mode = modes[m]->mode();
     evaluation.vertexErrorCm = tallies[m].vertexErrorCm / n;
+    evaluation.rows = rows;
+    evaluation.positions = std::move(tallies[m].positions);
     nlohmann::json patchList = nlohmann::json::array();
     for (const patches::Patch& patch : patches::garmentPatches(data.garment)) {
       double sum = 0;

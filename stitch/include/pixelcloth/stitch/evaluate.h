@@ -48,6 +48,8 @@ struct Evaluation {
   /// "layout", "vertices", "vertex_error_cm"}], "seams": SeamMetrics::toJson()}.
   nlohmann::json metrics;
   Eigen::VectorXd vertexErrorCm;  ///< #V: each vertex's mean error over the split, cm
+  std::vector<int> rows;          ///< the split's rows of the data, in order
+  std::vector<Eigen::MatrixX3f> positions;  ///< per row: the stitched prediction, #V x 3, as data.truth
   /// The `q`-quantile (0 to 1) of vertexErrorCm, cm: e.g. the top of an error map's colour scale.
   double vertexErrorQuantileCm(double q) const;
 };

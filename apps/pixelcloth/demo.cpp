@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "pixelcloth/viz/demo.h"
+#include "pixelcloth/viz/viewer.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -71,6 +72,12 @@ void runDemo(const DemoArgs& args) {
   report.step("motion: a clip of the demo's own out as a GLB, in through assimp, through the patch decoders",
               [&] { motion = eval::runDemoMotion(out, plan); });
   viz::demoMotion(report, body, motion);
+  viz::ViewSite site;
+  report.step("viewer: the garments, learned predictions, reconstructions and sequences as a 3D page", [&] {
+    site = viz::viewFolder(out);
+    viz::writeViewSite(out / "view", site);
+  });
+  viz::demoViewer(report, site);
   report.write();
 }
 }  // namespace

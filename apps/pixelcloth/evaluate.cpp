@@ -81,17 +81,8 @@ void runEvaluate(const EvaluateArgs& args) {
   metrics["architecture"] = learn::architectureName(inputs.model->architecture());
   metrics["residual"] = inputs.model->residual();
   metrics["dataset"] = args.dataset;
-  // The first mode's garments, for pixelcloth view: predictions.npy (samples x #V x 3, float32) and their samples.
-  metrics["rows"] = nlohmann::json::array();
-  std::vector<float> predicted;
-  for (size_t k = 0; k < evaluation.rows.size(); ++k) {
-    metrics["rows"].push_back(inputs.data.info.settings.first() + evaluation.rows[k]);
-    const Eigen::MatrixX3f& p = evaluation.positions[k];
-    for (Eigen::Index v = 0; v < p.rows(); ++v) predicted.insert(predicted.end(), {p(v, 0), p(v, 1), p(v, 2)});
-  }
   core::ensureOutputFolder(args.out);
-  core::writeNpy(std::filesystem::path(args.out) / "predictions.npy", predicted,
-                 {static_cast<std::int64_t>(evaluation.rows.size()), inputs.data.garment.mesh.numVertices(), 3});
+  stitch::writePredictions(args.out, evaluation, inputs.data, metrics);  // the first mode's garments
   core::writeJson(std::filesystem::path(args.out) / "metrics.json", metrics);
   // Blue 0, white 0.5, red 1 cm and more; below, the same stretched to the 95th percentile for models worse than that.
   std::ostringstream title, stretched;

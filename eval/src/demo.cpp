@@ -5,12 +5,15 @@
 
 #include "pixelcloth/cage/body_cage.h"
 #include "pixelcloth/cage/garment_cage.h"
+#include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/learn/predict.h"
 #include "pixelcloth/patches/patch.h"
 #include "pixelcloth/sim/generate.h"
 #include "pixelcloth/sim/pose_sampler.h"
+#include "pixelcloth/stitch/evaluate.h"
 #include "pixelcloth/stitch/pca_filter.h"
 #include "pixelcloth/stitch/stitcher.h"
 
@@ -56,6 +59,14 @@ DemoModel trainAndMeasure(DemoModel model, const fs::path& dataset, const fs::pa
   model.split = measuredSplit(data);
   model.evaluation = stitch::evaluate(trained, data, model.split).front();
   model.shown = stitch::predictRows(trained, data, shown);
+  // As pixelcloth evaluate writes it, for the viewer: learning/<model>/ beside the model folder, paths relative to it.
+  const fs::path root = model.folder.parent_path(), out = root / "learning" / model.folder.filename();
+  nlohmann::json metrics = model.evaluation.metrics;
+  metrics["model"] = model.folder.filename().string();
+  metrics["dataset"] = fs::relative(dataset, root).string();
+  core::ensureOutputFolder(out);
+  stitch::writePredictions(out, model.evaluation, data, metrics);
+  core::writeJson(out / "metrics.json", metrics);
   return model;
 }
 

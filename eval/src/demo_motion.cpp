@@ -51,8 +51,9 @@ DemoMotion runDemoMotion(const fs::path& report, const DemoPlan& plan) {
   const learn::PredictionInputs inputs = learn::posesPredictionInputs(
       report / "model_patch", out.motion.poses, out.imported.string(), dataset, learn::Engine::OneDnn);
   const stitch::Stitcher mean(inputs.data.garment, stitch::StitchMode{}, nullptr);
-  out.prediction = predictMotion(inputs, mean, out.motion, out.predicted,
-                                 {{"model", "model_patch"}, {"motion", "motion/imported"}, {"stitch", "mean"}});
+  out.prediction = predictMotion(
+      inputs, mean, out.motion, out.predicted,
+      {{"model", "model_patch"}, {"motion", "motion/imported"}, {"stitch", "mean"}, {"dataset", "dataset_tshirt"}});
 
   // The predicted garment as markers in the clip's world, as pixelcloth markers --pc2 takes them from garment.pc2.
   out.markers = folder / "markers";
@@ -74,9 +75,11 @@ DemoMotion runDemoMotion(const fs::path& report, const DemoPlan& plan) {
   // In again as pixelcloth reconstruct --markers-sequence --model reads them.
   const double baseSeconds =
       addTrajectoryBases(residual, body, definition, "motion/markers/markers.json", trajectories, out.motion, 0);
-  out.reconstruction =
-      predictMotion(residual, mean, out.motion, out.reconstructed,
-                    {{"model", "model_residual_patch"}, {"markers_sequence", "motion/markers/trajectories.npy"}});
+  out.reconstruction = predictMotion(residual, mean, out.motion, out.reconstructed,
+                                     {{"model", "model_residual_patch"},
+                                      {"markers", "motion/markers/markers.json"},
+                                      {"markers_sequence", "motion/markers/trajectories.npy"},
+                                      {"dataset", "dataset_tshirt"}});
   out.reconstruction.predictSeconds += baseSeconds;
   for (int f = 0; f < frames; ++f) {
     const Eigen::MatrixX3d base =

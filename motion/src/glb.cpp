@@ -55,12 +55,18 @@ class GltfWriter {
     return a;
   }
 
-  int indices(const Eigen::MatrixX3i& F) {
-    std::vector<std::uint32_t> values(F.size());
+  /// Triangle indices, 16-bit when every vertex index fits (half the bytes).
+  int indices(const Eigen::MatrixX3i& F, Eigen::Index vertices) {
+    if (vertices <= 65535) return indexAccessor<std::uint16_t>(F, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+    return indexAccessor<std::uint32_t>(F, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+  }
+
+  template <typename Index>
+  int indexAccessor(const Eigen::MatrixX3i& F, int componentType) {
+    std::vector<Index> values(F.size());
     for (Eigen::Index f = 0; f < F.rows(); ++f)
-      for (int c = 0; c < 3; ++c) values[3 * f + c] = static_cast<std::uint32_t>(F(f, c));
-    return accessor(values, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, values.size(),
-                    TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+      for (int c = 0; c < 3; ++c) values[3 * f + c] = static_cast<Index>(F(f, c));
+    return accessor(values, componentType, TINYGLTF_TYPE_SCALAR, values.size(), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   }
 
   int floats(const std::vector<float>& values, int type, size_t count) {
@@ -169,7 +175,7 @@ void writeAnimatedGlb(const std::filesystem::path& path, const AnimatedScene& sc
                                                 TINYGLTF_TARGET_ARRAY_BUFFER);
   skin.attributes["WEIGHTS_0"] =
       writer.accessor(weights, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, V, TINYGLTF_TARGET_ARRAY_BUFFER);
-  skin.indices = writer.indices(body.mesh.F);
+  skin.indices = writer.indices(body.mesh.F, body.mesh.numVertices());
   tinygltf::Mesh bodyMesh;
   bodyMesh.name = "body";
   bodyMesh.primitives.push_back(skin);
@@ -202,7 +208,7 @@ void writeAnimatedGlb(const std::filesystem::path& path, const AnimatedScene& sc
     tinygltf::Primitive cloth;
     cloth.mode = TINYGLTF_MODE_TRIANGLES;
     cloth.attributes["POSITION"] = writer.positions(scene.garmentFrames.front());
-    cloth.indices = writer.indices(garment.F);
+    cloth.indices = writer.indices(garment.F, garment.numVertices());
     for (int f = 1; f < frames; ++f)
       cloth.targets.push_back({{"POSITION", writer.positions(scene.garmentFrames[f] - scene.garmentFrames.front())}});
     tinygltf::Mesh garmentMesh;
@@ -283,7 +289,7 @@ std::string meshesGlb(const std::vector<GlbMesh>& meshes, double fps) {
     tinygltf::Primitive primitive;
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     primitive.attributes["POSITION"] = writer.positions(mesh.frames.front());
-    primitive.indices = writer.indices(mesh.faces);
+    primitive.indices = writer.indices(mesh.faces, V);
     for (const auto& [name, C] : mesh.colors) {
       PIXELCLOTH_CHECK(C.rows() == V && C.allFinite(), "glb mesh '" << mesh.name << "': colours " << name << " for "
                                                                     << C.rows() << " vertices (expected " << V << ")");

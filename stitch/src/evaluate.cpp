@@ -8,6 +8,7 @@
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/mesh.h"
+#include "pixelcloth/core/npy.h"
 #include "pixelcloth/core/progress.h"
 #include "pixelcloth/patches/patch.h"
 #include "pixelcloth/stitch/seams.h"
@@ -237,6 +238,19 @@ int bestPcaMode(const std::vector<Evaluation>& evaluations) {
                          evaluations[best].metrics["vertex_error_cm"].get<double>()))
       best = static_cast<int>(i);
   return best;
+}
+
+void writePredictions(const std::filesystem::path& folder, const Evaluation& evaluation,
+                      const learn::TrainingData& data, nlohmann::json& metrics) {
+  metrics["rows"] = nlohmann::json::array();
+  std::vector<float> values;
+  for (size_t k = 0; k < evaluation.rows.size(); ++k) {
+    metrics["rows"].push_back(data.info.settings.first() + evaluation.rows[k]);
+    const Eigen::MatrixX3f& p = evaluation.positions[k];
+    for (Eigen::Index v = 0; v < p.rows(); ++v) values.insert(values.end(), {p(v, 0), p(v, 1), p(v, 2)});
+  }
+  core::writeNpy(folder / "predictions.npy", values,
+                 {static_cast<std::int64_t>(evaluation.rows.size()), data.garment.mesh.numVertices(), 3});
 }
 
 }  // namespace pixelcloth::stitch

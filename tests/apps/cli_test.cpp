@@ -136,6 +136,18 @@ TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
   EXPECT_LT(motion["max_retarget_error_deg"].get<double>(), 0.01);
   EXPECT_GT(motion["metrics"]["garment_jitter_cm"]["mean"].get<double>(), 0);
 
+  // The 3D viewer of the report, linked from the top of index.html: the datasets, the learned models' predictions,
+  // the reconstructions and both sequences (the page itself is opened in Chromium by ViewCli's tests).
+  EXPECT_NE(html.find("href='view/index.html'"), std::string::npos);
+  for (const char* file : {"view/index.html", "view/viewer.js", "view/site.js", "view/three/three.min.js",
+                           "learning/model_patch/predictions.npy", "learning/model_residual_patch/metrics.json"})
+    EXPECT_TRUE(fs::is_regular_file(out / file)) << file;
+  const nlohmann::json groups = nlohmann::json::parse(readFile(out / "report.json"))["viewer"]["groups"];
+  for (const char* group : {"dataset_tshirt (dataset)", "learning/model_patch (evaluation)",
+                            "learning/model_residual_patch (evaluation)", "reconstruction (reconstruction)",
+                            "motion/predicted (sequence)", "motion/reconstructed (sequence)"})
+    EXPECT_TRUE(groups.contains(group)) << group << " in " << groups.dump();
+
   // Run again into the same folder, as a user does after pulling: the datasets are made afresh, so the models the first
   // run left were trained on other samples; the demo retrains them instead of refusing to resume.
   run = runPixelcloth({"demo", "--out", out.string(), "--poses", "2", "--filter-poses", "16", "--tshirt-samples", "10",

@@ -495,6 +495,58 @@ TEST(Sequence, TheAnimatedGlbReadsBackThroughAssimp) {
   }
 }
 
+TEST(Sequence, PlainMeshesGlbKeepsFramesColoursAndNamesForAssimp) {
+  // Two meshes: a square of two triangles over three frames with vertex colours and an application colour set, and
+  // a still triangle.
+  pm::GlbMesh square{"garment_0", Eigen::MatrixX3i(2, 3), {}, {}};
+  square.faces << 0, 1, 2, 1, 3, 2;
+  Eigen::MatrixX3d V(4, 3);
+  V << 0, 1, 0.2, 0.1, 1, 0.2, 0, 1.1, 0.2, 0.1, 1.1, 0.2;
+  for (int f = 0; f < 3; ++f) square.frames.push_back(V + Eigen::MatrixX3d::Constant(4, 3, 0.01 * f));
+  square.colors["COLOR_0"] = Eigen::MatrixX3f::Constant(4, 3, 0.5f);
+  square.colors["_PATCH"] = Eigen::MatrixX3f::Identity(4, 3);
+  pm::GlbMesh still{"body", Eigen::MatrixX3i(1, 3), {V.topRows(3)}, {}};
+  still.faces << 0, 1, 2;
+  const fs::path dir = pixelcloth::testing::freshDir("meshes_glb");
+  const std::string bytes = pm::meshesGlb({square, still}, 24);
+  ASSERT_EQ(bytes.substr(0, 4), "glTF");
+  {
+    std::ofstream out(dir / "scene.glb", std::ios::binary);
+    out << bytes;
+  }
+  Assimp::Importer importer;
+  const aiScene* read = importer.ReadFile((dir / "scene.glb").string(), 0);
+  ASSERT_TRUE(read) << importer.GetErrorString();
+  ASSERT_EQ(read->mNumMeshes, 2u);
+  const aiMesh *cloth = nullptr, *body = nullptr;
+  for (unsigned m = 0; m < read->mNumMeshes; ++m)
+    (read->mMeshes[m]->mNumVertices == 4 ? cloth : body) = read->mMeshes[m];
+  ASSERT_TRUE(cloth && body);
+  EXPECT_EQ(std::string(cloth->mName.C_Str()), "garment_0");
+  EXPECT_EQ(cloth->mNumFaces, 2u);  // 16-bit indices read back
+  EXPECT_EQ(cloth->mFaces[1].mIndices[1], 3u);
+  ASSERT_TRUE(cloth->HasVertexColors(0));
+  EXPECT_NEAR(cloth->mColors[0][2].g, 0.5, 1e-6);
+  ASSERT_EQ(cloth->mNumAnimMeshes, 2u);
+  const aiVector3D corner = cloth->mAnimMeshes[1]->mVertices[3];
+  EXPECT_LT((Eigen::Vector3d(corner.x, corner.y, corner.z) - square.frames[2].row(3).transpose()).norm(), 1e-6);
+  EXPECT_EQ(body->mNumAnimMeshes, 0u);
+
+  // Refused: frames of another size, positions that are not finite, colours of another size, faces beyond the mesh.
+  pm::GlbMesh bad = square;
+  bad.frames[1] = V.topRows(3);
+  EXPECT_THROW(pm::meshesGlb({bad}), pixelcloth::core::InputError);
+  bad = square;
+  bad.frames[2](0, 0) = std::nan("");
+  EXPECT_THROW(pm::meshesGlb({bad}), pixelcloth::core::InputError);
+  bad = square;
+  bad.colors["_ERROR"] = Eigen::MatrixX3f::Zero(3, 3);
+  EXPECT_THROW(pm::meshesGlb({bad}), pixelcloth::core::InputError);
+  bad = square;
+  bad.faces(0, 0) = 4;
+  EXPECT_THROW(pm::meshesGlb({bad}), pixelcloth::core::InputError);
+}
+
 TEST(Sequence, ABodyAloneIsAnAnimatedGlbToo) {
   const pb::Body& body = pixelcloth::testing::coarseMannequin();
   pm::AnimatedScene scene;

@@ -19,6 +19,11 @@ void writeIndex(const std::filesystem::path& out, const nlohmann::json& report) 
        << "border:1px solid #ddd}td,th{padding:2px 10px;text-align:left}</style></head><body>"
        << "<h1>pixelcloth demo report</h1><p>Everything the toolkit does so far, on the built-in mannequin and "
        << "garments. Numbers are in <code>report.json</code>.</p>";
+  if (report.contains("viewer"))
+    html << "<p><b><a href='" << report["viewer"]["page"].get<std::string>()
+         << "'>Open the 3D viewer</a></b>: " << report["viewer"]["scenes"].get<int>()
+         << " scenes of this report (garments on their bodies, learned predictions against ground truth, "
+            "reconstructions with their markers, sequences) to turn around in the browser.</p>";
   for (const auto& section : report["sections"]) {
     html << "<h2>" << section["title"].get<std::string>() << "</h2><p>" << section["text"].get<std::string>() << "</p>";
     for (const auto& picture : section["pictures"]) html << "<p><img src='" << picture.get<std::string>() << "'></p>";

@@ -22,16 +22,28 @@ namespace {
 namespace fs = std::filesystem;
 
 /// A path that a folder's JSON records as it was given: absolute, else relative to the current folder, else to the
-/// recording folder or its parent. Throws InputError naming the file and key when none exists.
+/// recording folder or a folder above it (a report's paths are relative to the report). Throws InputError naming the
+/// file and key when none exists.
 fs::path recordedPath(const nlohmann::json& json, const std::string& key, const fs::path& file) {
   PIXELCLOTH_CHECK(json.contains(key) && json[key].is_string(),
                    file.string() << ": no \"" << key << "\" (the folder the viewer needs to read)");
   const fs::path given = json[key].get<std::string>();
-  for (const fs::path& candidate : {given, file.parent_path() / given, file.parent_path().parent_path() / given})
-    if (fs::exists(candidate)) return candidate;
+  if (fs::exists(given)) return given;
+  for (fs::path above = fs::absolute(file).lexically_normal().parent_path(); given.is_relative();
+       above = above.parent_path()) {
+    if (fs::exists(above / given)) return above / given;
+    if (above == above.root_path()) break;
+  }
   throw core::InputError(file.string() + ": \"" + key + "\" names " + given.string() +
                          ", which is not found (relative to the current folder or " + file.parent_path().string() +
                          ")");
+}
+
+/// The folder's own name, also for "dir/" and ".".
+std::string folderName(const fs::path& folder) {
+  fs::path absolute = fs::absolute(folder).lexically_normal();
+  if (absolute.filename().empty()) absolute = absolute.parent_path();
+  return absolute.filename().string();
 }
 
 bool isFormat(const fs::path& file, const std::string& format) {
@@ -255,7 +267,7 @@ std::vector<ViewScene> sequenceScenes(const fs::path& folder, const std::string&
                                    << " frames; expected as many frames of garment.obj's " << garmentMesh.numVertices()
                                    << " and body.obj's " << bodyMesh.numVertices() << " vertices");
   ViewScene scene;
-  scene.name = folder.filename().string();
+  scene.name = folderName(folder);
   scene.group = group;
   scene.fps = metrics.value("fps", 30.0);
   scene.garmentFaces = garmentMesh.F;
@@ -370,9 +382,10 @@ ViewSite viewFolder(const fs::path& folder, const ViewOptions& options) {
   PIXELCLOTH_CHECK(options.maxScenes >= 1, "view --max-scenes " << options.maxScenes << ": expected at least 1");
   ViewSite site;
   site.source = fs::absolute(folder).lexically_normal().string();
+  const std::string name = folderName(folder);
   const FolderKind kind = folderKind(folder);
   if (kind != FolderKind::None) {
-    site.title = std::string(kindName(kind)) + " " + folder.filename().string();
+    site.title = std::string(kindName(kind)) + " " + name;
     site.scenes = scenesOf(folder, kind, kindName(kind), options);
     return site;
   }
@@ -386,7 +399,7 @@ ViewSite viewFolder(const fs::path& folder, const ViewOptions& options) {
                                "or a folder holding such folders)");
   ViewOptions each = options;
   each.maxScenes = std::min(options.maxScenes, 4);
-  site.title = "report " + fs::absolute(folder).lexically_normal().filename().string();
+  site.title = "outputs in " + name;
   for (const auto& [path, childKind] : found) {
     const std::string group = fs::relative(path, folder).string() + " (" + kindName(childKind) + ")";
     for (ViewScene& scene : scenesOf(path, childKind, group, each)) site.scenes.push_back(std::move(scene));

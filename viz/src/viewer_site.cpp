@@ -79,9 +79,7 @@ std::pair<std::string, nlohmann::json> sceneFiles(const ViewScene& scene, const 
   std::vector<motion::GlbMesh> meshes;
   nlohmann::json meta = {{"name", scene.name}, {"frames", frames}, {"fps", scene.fps}, {"info", scene.info}};
   if (!scene.bodyFrames.empty()) {
-    motion::GlbMesh body{"body", scene.bodyFaces, scene.bodyFrames, {}};
-    body.colors["COLOR_0"] = uniformColor(scene.bodyFrames.front().rows(), {0.78f, 0.74f, 0.70f});
-    meshes.push_back(std::move(body));
+    meshes.push_back({"body", scene.bodyFaces, scene.bodyFrames, {}});  // one colour, the page's
     meta["body"] = {{"node", "body"}, {"vertices", scene.bodyFrames.front().rows()}};
   }
   meta["garments"] = nlohmann::json::array();

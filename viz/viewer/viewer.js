@@ -120,6 +120,11 @@
     geometry.setIndex(source.index);
     geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(base), 3));
     var colors = { plain: source.attributes.color, error: source.attributes._error, patch: source.attributes._patch };
+    if (!colors.plain) {  // the body: one colour
+      var grey = new Float32Array(base.length);
+      for (var i = 0; i < grey.length; i += 3) grey.set([0.78, 0.74, 0.70], i);
+      colors.plain = new THREE.BufferAttribute(grey, 3);
+    }
     geometry.setAttribute('color', new THREE.BufferAttribute(new Float32Array(colors.plain.array), 3));
     geometry.computeVertexNormals();
     var material = wire
@@ -181,7 +186,7 @@
     shown.curveVertices = segments;
     root.add(shown.curves);
     shown.markers = new THREE.Points(new THREE.BufferGeometry(),
-                                     new THREE.PointsMaterial({ color: 0xd01010, size: 0.018 }));
+                                     new THREE.PointsMaterial({ color: 0xd01010, size: 7, sizeAttenuation: false }));
     root.add(shown.markers);
     scene.add(root);
     current = shown;
@@ -238,9 +243,10 @@
       lines.push(g.name + ': ' + g.vertices + ' vertices' + (g.error ? ', ' + g.mean_error_cm.toFixed(3) + ' cm' : ''));
     });
     if (meta.body) lines.push('body: ' + meta.body.vertices + ' vertices');
-    if (meta.frames > 1) lines.push(meta.frames + ' frames at ' + meta.fps + ' fps');
+    if (meta.frames > 1) lines.push(meta.frames + ' frames at ' + meta.fps.toFixed(1) + ' fps');
     Object.keys(meta.info).forEach(function (key) {
       var value = meta.info[key];
+      if (value === null || value === '') return;
       if (typeof value === 'number') value = Number.isInteger(value) ? value : value.toFixed(4);
       else if (typeof value === 'object') value = JSON.stringify(value);
       lines.push(key + ': ' + value);

@@ -4,6 +4,7 @@
 // truth (DESIGN.md, "Metrics").
 
 #include <Eigen/Core>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -58,6 +59,11 @@ struct Evaluation {
 /// Evaluation per stitcher, in order. Throws InputError for an empty split.
 std::vector<Evaluation> evaluate(const learn::TrainedModel& model, const learn::TrainingData& data, data::Split split,
                                  const std::vector<const Stitcher*>& stitchers = {});
+
+/// The garments of `evaluation` for pixelcloth view: predictions.npy in `folder` (rows x #V x 3, float32, as the
+/// dataset's positions.npy), and in `metrics` "rows", the dataset sample of each.
+void writePredictions(const std::filesystem::path& folder, const Evaluation& evaluation,
+                      const learn::TrainingData& data, nlohmann::json& metrics);
 
 /// The pca:K evaluation with the lowest mean vertex error: the k chosen on the split `evaluations` measured (the
 /// regularisation split, to report the test split at that k). -1 when none is a pca:K mode.

@@ -9,6 +9,7 @@
 #include "pixelcloth/body/body.h"
 #include "pixelcloth/eval/demo.h"
 #include "pixelcloth/viz/report.h"
+#include "pixelcloth/viz/viewer.h"
 
 namespace pixelcloth::viz {
 
@@ -78,5 +79,8 @@ void demoSeams(Report& report, const body::Body& body, const eval::DemoSeams& se
 /// The demo's own motion through the patch decoders (motion/): the clip's strip, the garment on the moving body, the
 /// temporal measures.
 void demoMotion(Report& report, const body::Body& body, const eval::DemoMotion& demo);
+/// The 3D viewer of the report (view/, written by the demo's last step): a section linking it with its scenes by group,
+/// linked from the top of index.html.
+void demoViewer(Report& report, const ViewSite& site);
 
 }  // namespace pixelcloth::viz

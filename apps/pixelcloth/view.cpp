@@ -34,13 +34,17 @@ void registerView(CLI::App& app) {
       "An output folder (dataset, evaluate, predict, reconstruct, a motion prediction, the demo's report) as "
       "a 3D viewer page: index.html, three.js and one .glb per scene");
   verb->add_option("folder", args->folder, "The output folder to show")->required();
-  verb->add_option("--out", args->out, "The site's folder (default: FOLDER/view)");
+  CLI::Option* out = verb->add_option("--out", args->out, "The site's folder (default: FOLDER/view)");
   verb->add_option("--max-scenes", args->maxScenes,
                    "Samples shown of a dataset or an evaluation, spread over its rows (a report folder: at most 4 "
                    "of each)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
-  verb->callback([args] { runView(*args); });
+  verb->callback([args, out] {
+    PIXELCLOTH_CHECK(out->count() == 0 || !args->out.empty(),
+                     "view --out \"\": an empty folder name (leave --out out for FOLDER/view)");
+    runView(*args);
+  });
 }
 
 }  // namespace pixelcloth::apps

@@ -49,6 +49,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
       {"predict", {"--model", "--pose", "--markers", "--dataset", "--samples", "--base", "--out"}},
       {"evaluate", {"--model", "--dataset", "--split", "--base", "--out"}},
       {"experiments", {"--scale", "small", "full", "--out", "--threads"}},
+      {"view", {"folder", "--out", "--max-scenes"}},
   };
   for (const auto& [verb, options] : verbs) {
     SCOPED_TRACE(verb);

@@ -100,14 +100,16 @@ TEST_F(LearnCli, EveryModelTrainsPredictsAndIsEvaluated) {
     EXPECT_NEAR(metrics["vertex_error_cm"].get<double>(), reference["vertex_error_cm"].get<double>(),
                 1e-4 * reference["vertex_error_cm"].get<double>());
   }
-  // predict, dataset form: an OBJ, EXR and PNG per sample, and the error it printed is the evaluation's.
+  // predict, dataset form: an OBJ, EXR and PNG per sample with its posed body, prediction.json listing them, and the
+  // error it printed is the evaluation's.
   const fs::path predicted = work_ / "predicted";
   CliRun run = runPixelcloth({"predict", "--model", (work_ / "whole").string(), "--dataset", dataset().string(),
                               "--samples", "0,7", "--out", predicted.string()});
   ASSERT_EQ(run.status, 0) << run;
-  EXPECT_EQ(filesUnder(predicted), (std::vector<std::string>{"sample_000000.exr", "sample_000000.obj",
-                                                             "sample_000000.png", "sample_000007.exr",
-                                                             "sample_000007.obj", "sample_000007.png"}));
+  EXPECT_EQ(filesUnder(predicted),
+            (std::vector<std::string>{"prediction.json", "sample_000000.exr", "sample_000000.obj", "sample_000000.png",
+                                      "sample_000000_body.obj", "sample_000007.exr", "sample_000007.obj",
+                                      "sample_000007.png", "sample_000007_body.obj"}));
   EXPECT_EQ(pixelcloth::core::readMesh(predicted / "sample_000000.obj").numVertices(), pixelcloth::testing::tshirt().mesh.numVertices());
   // predict, pose form.
   run = runPixelcloth({"markers", "--dataset", dataset().string(), "--sample", "2", "--pose-out",
@@ -117,6 +119,8 @@ TEST_F(LearnCli, EveryModelTrainsPredictsAndIsEvaluated) {
                        (work_ / "posed").string()});
   ASSERT_EQ(run.status, 0) << run;
   EXPECT_TRUE(fs::exists(work_ / "posed" / "garment.obj"));
+  EXPECT_EQ(pixelcloth::core::readMesh(work_ / "posed" / "body.obj").numVertices(),
+            pixelcloth::core::readMesh(dataset() / "body" / "body.obj").numVertices());
 }
 
 TEST_F(LearnCli, PatchDecodersFromTwoRunsMakeOneModelAndResidualOnesStartAtTheBase) {

@@ -89,11 +89,23 @@ void addBody(ViewScene& scene, const body::Body& body, const Eigen::VectorXf& po
   scene.bodyFrames = {body.posedVertices(body::Pose::fromLeading(pose))};
 }
 
+/// A dataset with its body and garment, as the scenes of its samples need them.
+struct OpenedDataset {
+  data::Dataset dataset;
+  body::Body body;
+  GarmentContext context;
+};
+
+OpenedDataset openWithBody(const fs::path& folder) {
+  data::Dataset dataset = data::openDataset(folder);
+  body::Body body = data::loadDatasetBody(dataset.info.where());
+  GarmentContext context = garmentContext(data::datasetGarment(dataset.info));
+  return {std::move(dataset), std::move(body), std::move(context)};
+}
+
 /// A dataset (generate, dataset import): its samples on their posed bodies.
 std::vector<ViewScene> datasetScenes(const fs::path& folder, const std::string& group, const ViewOptions& options) {
-  const data::Dataset dataset = data::openDataset(folder);
-  const body::Body body = data::loadDatasetBody(dataset.info.where());
-  const GarmentContext context = garmentContext(data::datasetGarment(dataset.info));
+  const auto [dataset, body, context] = openWithBody(folder);
   std::vector<ViewScene> scenes;
   for (int row : spreadRows(dataset.rows(), options.maxScenes)) {
     const int sample = dataset.info.settings.first() + row;
@@ -117,9 +129,7 @@ std::vector<ViewScene> evaluationScenes(const fs::path& folder, const std::strin
   const fs::path metricsFile = folder / "metrics.json";
   const nlohmann::json metrics = core::readJson(metricsFile);
   const fs::path datasetPath = recordedPath(metrics, "dataset", metricsFile);
-  const data::Dataset dataset = data::openDataset(datasetPath);
-  const body::Body body = data::loadDatasetBody(dataset.info.where());
-  const GarmentContext context = garmentContext(data::datasetGarment(dataset.info));
+  const auto [dataset, body, context] = openWithBody(datasetPath);
   const int V = context.garment.mesh.numVertices();
   const core::NpyArray predictions = core::readNpy(folder / "predictions.npy");
   PIXELCLOTH_CHECK(metrics.contains("rows") && metrics["rows"].is_array(),
@@ -203,9 +213,7 @@ std::vector<ViewScene> reconstructionScenes(const fs::path& folder, const std::s
   const fs::path metricsFile = folder / "metrics.json";
   const nlohmann::json metrics = core::readJson(metricsFile);
   const fs::path datasetPath = recordedPath(metrics, "dataset", metricsFile);
-  const data::Dataset dataset = data::openDataset(datasetPath);
-  const body::Body body = data::loadDatasetBody(dataset.info.where());
-  const GarmentContext context = garmentContext(data::datasetGarment(dataset.info));
+  const auto [dataset, body, context] = openWithBody(datasetPath);
   std::optional<cage::MarkerSet> markers;
   if (fs::exists(folder / "markers.json")) markers = cage::readMarkers(folder / "markers.json");
   std::vector<fs::path> samples;

@@ -39,15 +39,15 @@ void registerBases(CLI::App& app) {
       "Figures of the per-patch blendshape bases (paper's appendix): boundary data on a square patch filled "
       "by harmonic and anisotropic diffusion; PNG height maps, 3D views, OBJ surfaces, contact sheet");
   verb->add_option("--figures", args->figures, "Output folder for the figures")->required();
-  verb->add_option("--side", args->options.side, "Side of the square patch, metres")
+  verb->add_option("--side", args->options.side, "Side of the square patch, metres (0.001 to 100)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(0.001, 100.0));
   verb->add_option("--cells", args->options.cells, "Grid cells per side (4 triangles each)")
       ->capture_default_str()
       ->check(CLI::Range(2, 400));
-  verb->add_option("--amplitude", args->options.amplitude, "Largest boundary height, metres")
+  verb->add_option("--amplitude", args->options.amplitude, "Largest boundary height, metres (0.000001 to 10)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(0.000001, 10.0));
   verb->add_option("--theta", args->thetaDegrees, "Anisotropic direction of faster diffusion, degrees from +u")
       ->capture_default_str();
   verb->add_option("--ratio", args->options.ratio, "Anisotropic diffusion across theta relative to along, (0, 1]")

@@ -29,7 +29,7 @@ void registerGenerate(CLI::App& app) {
   sim::GenerateOptions& o = args->options;
   CLI::App* verb = app.add_subcommand(
       "generate", "Simulate a dataset: random poses (the paper's sampler), quasistatic drape, offsets; resumable");
-  verb->add_option("--count", o.count, "Samples in the whole dataset (all shards)")->required();
+  verb->add_option("--count", o.count, "Samples in the whole dataset (all shards), 1 to 10000000")->required();
   verb->add_option("--seed", o.seed, "Seed of poses and splits")->capture_default_str();
   verb->add_option("--out", args->out, "Dataset folder (created, or resumed when it holds a partial run)")->required();
   verb->add_option("--garment", o.garment, kGarmentHelp)->capture_default_str();

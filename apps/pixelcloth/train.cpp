@@ -159,9 +159,11 @@ void registerTrain(CLI::App& app) {
       ->check(CLI::IsMember({"none", "per-channel"}))
       ->capture_default_str();
   verb->add_option("--normal-weight", args->options.normalWeight,
-                   "Weight of the normal loss; default 0.01 (T-shirt), 0.1 (necktie)");
+                   "Weight of the normal loss, 0 to 1000000; default 0.01 (T-shirt), 0.1 (necktie)")
+      ->check(CLI::Range(0.0, 1e6));
   verb->add_option("--edge-weight", args->options.edgeWeight,
-                   "Weight of the edge-length loss; default 0.1 (necktie), 0 (T-shirt)");
+                   "Weight of the edge-length loss, 0 to 1000000; default 0.1 (necktie), 0 (T-shirt)")
+      ->check(CLI::Range(0.0, 1e6));
   verb->add_option("--epochs", args->options.epochs, "Passes over the train split" + ganDefault(gan.epochs))->capture_default_str();
   verb->add_option("--batch", args->options.batch, "Samples per Adam step" + ganDefault(gan.batch))->capture_default_str();
   verb->add_option("--lr", args->options.learningRate, "Adam's learning rate" + ganDefault(gan.learningRate))

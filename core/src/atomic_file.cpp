@@ -12,12 +12,14 @@ namespace pixelcloth::core {
 namespace fs = std::filesystem;
 
 void checkOutputFolder(const fs::path& folder) {
+  PIXELCLOTH_CHECK(!folder.empty(), "an empty output folder name (--out \"\"): give the folder to write into");
   std::error_code ec;
   PIXELCLOTH_CHECK(!fs::exists(folder, ec) || fs::is_directory(folder, ec),
                    folder.string() << ": exists but is not a folder; expected a folder to write outputs into");
 }
 
 void ensureOutputFolder(const fs::path& folder) {
+  PIXELCLOTH_CHECK(!folder.empty(), "an empty output folder name (--out \"\"): give the folder to write into");
   std::error_code ec;
   if (fs::exists(folder, ec)) {
     PIXELCLOTH_CHECK(fs::is_directory(folder, ec), folder.string() << ": exists but is not a folder; expected a folder "
@@ -29,6 +31,8 @@ void ensureOutputFolder(const fs::path& folder) {
 }
 
 void writeAtomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {
+  PIXELCLOTH_CHECK(!target.empty() && target.has_filename(),
+                   "'" << target.string() << "': expected a file name to write (an empty --out?)");
   if (target.has_parent_path()) ensureOutputFolder(target.parent_path());
   fs::path temporary = target;
   temporary += ".tmp-" + std::to_string(::getpid());

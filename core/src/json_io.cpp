@@ -8,8 +8,30 @@ namespace pixelcloth::core {
 
 namespace fs = std::filesystem;
 
-nlohmann::json readJson(const fs::path& path) {
-  const std::string text = readTextFile(path);
+nlohmann::json readJson(const fs::path& path) { return parseJson(readTextFile(path), path.string()); }
+
+nlohmann::json parseJson(const std::string& text, const std::string& context) {
+  // Nesting first, outside strings, in one pass over the bytes.
+  int depth = 0;
+  bool inString = false, escaped = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      PIXELCLOTH_CHECK(++depth <= kMaxJsonDepth,
+                       context << ": JSON nested more than " << kMaxJsonDepth << " levels deep (byte " << i + 1 << ")");
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
@@ -21,14 +43,14 @@ nlohmann::json readJson(const fs::path& path) {
     std::string reason = e.what();
     const size_t colon = reason.find(": ");  // drop nlohmann's "[json.exception.parse_error.101] parse error at ..."
     if (colon != std::string::npos) reason = reason.substr(colon + 2);
-    PIXELCLOTH_FAIL(path.string() << ": invalid JSON at line " << line << ", column " << column << " (byte " << e.byte
-                                  << "): " << reason);
+    PIXELCLOTH_FAIL(context << ": invalid JSON at line " << line << ", column " << column << " (byte " << e.byte
+                            << "): " << reason);
   } catch (const nlohmann::json::exception& e) {
     // Valid syntax the parser still cannot hold, e.g. a number too large for a double (out_of_range.406).
     std::string reason = e.what();
     const size_t bracket = reason.find("] ");
     if (bracket != std::string::npos) reason = reason.substr(bracket + 2);
-    PIXELCLOTH_FAIL(path.string() << ": cannot read the JSON: " << reason);
+    PIXELCLOTH_FAIL(context << ": cannot read the JSON: " << reason);
   }
 }
 

@@ -172,8 +172,8 @@ TensorFile readTensorFile(const fs::path& path, const std::string& kind) {
   const std::uint32_t actual = crc32Of(bytes.data() + kPreamble, headerSize);
   PIXELCLOTH_CHECK(!kCompareCrcs || actual == headerCrc,
                    name << ": header CRC-32 " << actual << ", the preamble says " << headerCrc << ": the file is damaged");
-  const nlohmann::json header = nlohmann::json::parse(bytes.begin() + kPreamble, bytes.begin() + kPreamble + headerSize,
-                                                      nullptr, /*allow_exceptions=*/false);
+  const nlohmann::json header =
+      parseJson(std::string(bytes.begin() + kPreamble, bytes.begin() + kPreamble + headerSize), name + ": header");
   PIXELCLOTH_CHECK(header.is_object(), name << ": its header is not a JSON object");
   const std::string format = valueOr<std::string>(header, "format", "", name);
   PIXELCLOTH_CHECK(format == kFormat, name << ": format '" << format << "', expected '" << kFormat << "'");

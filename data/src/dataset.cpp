@@ -282,12 +282,7 @@ ChunkFile readChunkHeader(const fs::path& path, const DatasetSettings& settings)
   std::string text(length, '\0');
   in.read(text.data(), length);
   PIXELCLOTH_CHECK(in, file << ": truncated chunk header; remove it to regenerate its samples");
-  json header;
-  try {
-    header = json::parse(text);
-  } catch (const json::exception& e) {
-    PIXELCLOTH_FAIL(file << ": malformed chunk header (" << e.what() << "); remove it to regenerate its samples");
-  }
+  const json header = core::parseJson(text, file + ": chunk header (remove the file to regenerate its samples)");
   ChunkFile chunk;
   chunk.path = path;
   chunk.dataOffset = 12 + length;

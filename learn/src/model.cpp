@@ -231,7 +231,8 @@ Architecture architectureFromName(const std::string& name, const std::string& co
 
 void ModelSpec::validate() const {
   PIXELCLOTH_CHECK(std::isfinite(width) && width > 0 && width <= 4, "model: width " << width << ", expected (0, 4]");
-  PIXELCLOTH_CHECK(inputSize >= 0 && inputSize <= 100000, "model: input size " << inputSize << ", expected >= 0");
+  PIXELCLOTH_CHECK(inputSize >= 0 && inputSize <= 100000,
+                   "model: input size " << inputSize << ", expected 0 to 100000");
   PIXELCLOTH_CHECK(minChannels >= 0 && minChannels <= 4096,
                    "model: minimum channels " << minChannels << ", expected 0 to 4096");
   const bool baseline = architecture == Architecture::FullyConnected || architecture == Architecture::FullyConnectedPca;

@@ -106,7 +106,8 @@ void forEachOnSimulators(GarmentSimulator& first, const body::Body& body, const 
 
 void GenerateOptions::validate() const {
   PIXELCLOTH_CHECK(!garment.empty(), "generate: --garment is empty; expected a template name or a garment folder");
-  PIXELCLOTH_CHECK(count >= 1, "generate: --count must be at least 1, got " << count);
+  PIXELCLOTH_CHECK(count >= 1 && count <= kMaxGenerateCount,
+                   "generate: --count " << count << ", expected 1 to " << kMaxGenerateCount);
   PIXELCLOTH_CHECK(threads >= 0, "generate: --threads must be >= 0, got " << threads);
   PIXELCLOTH_CHECK(maxAttempts >= 1, "generate: max attempts must be >= 1");
   PIXELCLOTH_CHECK(corruptWeights.empty() || corruptWeights == "torso" || corruptWeights == "torso+arm",

@@ -50,6 +50,16 @@ TEST(JsonIo, SyntaxErrorsGiveFileLineAndColumn) {
             (dir / "absent.json").string() + ": no such file");
 }
 
+TEST(JsonIo, DeepNestingIsRefusedBeforeParsingAndBracketsInStringsDoNotCount) {
+  // 150,000 levels under a key: nlohmann parses it, then overflows the stack copying it. Refused before parsing.
+  const std::string bomb = "{\"settings\": " + std::string(150000, '[') + std::string(150000, ']') + "}";
+  const std::string message = pixelcloth::testing::inputErrorOf([&] { pc::parseJson(bomb, "manifest.json"); });
+  EXPECT_EQ(message, "manifest.json: JSON nested more than 64 levels deep (byte 77)") << message;
+  // 64 levels are fine, and brackets inside strings (escaped quotes too) are text.
+  const std::string deep = std::string(63, '[') + "{\"a\":\"[[[\\\"{{{\"}" + std::string(63, ']');
+  EXPECT_EQ(pc::parseJson(deep, "deep.json").dump(), deep);
+}
+
 TEST(JsonIo, RequiredFieldsSayWhatIsMissingOrWrong) {
   json manifest = {{"seed", 7}, {"garment", "tshirt"}, {"scale", 0.5}, {"splits", {1, 2}}};
   EXPECT_EQ(pc::requireField(manifest, "garment", "manifest.json"), "tshirt");

@@ -12,8 +12,17 @@
 
 namespace pixelcloth::core {
 
-/// Reads and parses a JSON file. Throws `InputError` naming the file for a missing file and, for a syntax error,
-/// giving its line, column and byte offset ("manifest.json: invalid JSON at line 3, column 7 (byte 25): ...").
+/// The deepest nesting of arrays and objects a pixelcloth JSON reader accepts. Our files nest a few levels; a value
+/// nested many thousands deep would overflow the stack when nlohmann copies or compares it.
+constexpr int kMaxJsonDepth = 64;
+
+/// Parses JSON `text`, refusing it before parsing when its arrays and objects nest deeper than kMaxJsonDepth. Throws
+/// `InputError` starting with `context` (the file) for a syntax error, giving its line, column and byte offset
+/// ("manifest.json: invalid JSON at line 3, column 7 (byte 25): ..."), or for the nesting.
+nlohmann::json parseJson(const std::string& text, const std::string& context);
+
+/// Reads and parses a JSON file (parseJson). Throws `InputError` naming the file for a missing file and, for a syntax
+/// error, giving its line, column and byte offset ("manifest.json: invalid JSON at line 3, column 7 (byte 25): ...").
 nlohmann::json readJson(const std::filesystem::path& path);
 
 /// Writes `value` as JSON text (pretty-printed with `indent` spaces, compact when negative) followed by a newline,

@@ -11,6 +11,10 @@
 namespace pixelcloth::sim {
 
 /// Settings of `pixelcloth generate` (DESIGN.md, "Simulation").
+/// The most samples one dataset holds (`generate --count`): ten million T-shirt samples are 720 GB of positions and
+/// offsets.
+constexpr int kMaxGenerateCount = 10000000;
+
 struct GenerateOptions {
   /// What --garment names: a template ("tshirt", "necktie") or a garment folder (garment::resolveGarment).
   std::string garment = "tshirt";

@@ -87,8 +87,8 @@ void checkFinite(const float* values, std::int64_t count, const std::string& pat
   for (std::int64_t i = 0; i < count; ++i) {
     if (!std::isfinite(values[i])) {
       const std::int64_t element = firstElement + i;
-      PIXELCLOTH_FAIL(path << ": value " << values[i] << " at row " << element / rowLength << ", element "
-                           << element % rowLength << " is not finite");
+      PIXELCLOTH_FAIL(path << ": value " << values[i] << " at row " << element / rowLength + 1 << ", element "
+                           << element % rowLength + 1 << " (counting from 1) is not finite");
     }
   }
 }

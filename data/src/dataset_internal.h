@@ -53,7 +53,8 @@ void readAt(std::ifstream& in, const std::filesystem::path& path, std::int64_t o
 /// True when two files have the same bytes.
 bool sameBytes(const std::filesystem::path& a, const std::filesystem::path& b);
 
-/// Throws `InputError` naming `path` and the first non-finite value's position when a float32 block is not finite.
+/// Throws `InputError` naming `path` and the first non-finite value's position (row and element, counted from 1) when
+/// a float32 block is not finite.
 void checkFinite(const float* values, std::int64_t count, const std::string& path, std::int64_t firstElement,
                  std::int64_t rowLength);
 

@@ -110,11 +110,19 @@ std::string DatasetInfo::summary() const {
 
 namespace {
 
+/// A float32 array of `shape`: dtype and shape checked from the header before the data is read, every value checked
+/// to be finite after (a NaN would reach training as a NaN loss).
 core::NpyArray readFloatArray(const fs::path& path, const std::vector<std::int64_t>& shape) {
+  const core::NpyHeader header = core::readNpyHeader(path);
+  PIXELCLOTH_CHECK(header.dtype == "<f4" && header.shape == shape,
+                   path.string() << ": dtype " << header.dtype << ", shape " << header.shapeString()
+                                 << ", expected <f4 " << core::npyShapeString(shape));
   core::NpyArray array = core::readNpy(path);
   array.checkDtype("<f4");
   PIXELCLOTH_CHECK(array.shape == shape,
                    path.string() << ": shape " << array.shapeString() << ", expected " << core::npyShapeString(shape));
+  const std::int64_t rowLength = shape.size() > 1 ? array.size() / std::max<std::int64_t>(shape[0], 1) : 1;
+  detail::checkFinite(array.data<float>(), array.size(), path.string(), 0, std::max<std::int64_t>(rowLength, 1));
   return array;
 }
 
@@ -179,8 +187,13 @@ Dataset openDataset(const DatasetFolder& where) {
   PIXELCLOTH_CHECK(split.shape == std::vector<std::int64_t>{rows},
                    (folder / kSplit).string() << ": shape " << split.shapeString() << ", expected (" << rows << ",)");
   d.split.assign(split.bytes.begin(), split.bytes.end());
+  for (std::int64_t r = 0; r < rows; ++r) {
+    const Eigen::VectorXf pose = d.poses.row(r).transpose();  // poses is column-major: one row at a time
+    detail::checkFinite(pose.data(), pose.size(), (folder / kPoses).string(), r * pose.size(),
+                        std::max<std::int64_t>(pose.size(), 1));
+  }
   for (std::int64_t r = 0; r < rows; ++r)
-    PIXELCLOTH_CHECK(d.split[r] <= 2, (folder / kSplit).string() << ": row " << r << " has split value "
+    PIXELCLOTH_CHECK(d.split[r] <= 2, (folder / kSplit).string() << ": row " << r + 1 << " has split value "
                                                                  << int(d.split[r]) << ", expected 0, 1 or 2");
   return d;
 }
@@ -300,7 +313,7 @@ DatasetCheckReport checkDataset(const fs::path& folder, const DatasetCheckOption
       checkFinite(buffer.data(), rowLength, path.string(), r * rowLength, rowLength);
       if (name == std::string(kPoses)) {
         body::Pose::fromLeading(Eigen::Map<const Eigen::VectorXf>(buffer.data(), s.poseSize),
-                                path.string() + ": row " + std::to_string(r));
+                                path.string() + ": row " + std::to_string(r + 1));
       }
       progress.advance();
     }
@@ -312,11 +325,11 @@ DatasetCheckReport checkDataset(const fs::path& folder, const DatasetCheckOption
     readAt(in, folder / kSplit, splitHeader.dataOffset, split.data(), rows);
     const std::vector<std::uint8_t> expected = datasetSplit(s.seed, s.count);
     for (std::int64_t r = 0; r < rows; ++r) {
-      PIXELCLOTH_CHECK(split[r] <= 2, (folder / kSplit).string() << ": row " << r << " has split value "
+      PIXELCLOTH_CHECK(split[r] <= 2, (folder / kSplit).string() << ": row " << r + 1 << " has split value "
                                                                  << int(split[r]) << ", expected 0, 1 or 2");
       PIXELCLOTH_CHECK(split[r] == expected[s.first() + r],
                        (folder / kSplit).string()
-                           << ": row " << r << " (sample " << s.first() + r << ") is " << splitName(Split(split[r]))
+                           << ": row " << r + 1 << " (sample " << s.first() + r << ") is " << splitName(Split(split[r]))
                            << ", but seed " << s.seed << " and " << s.count << " samples make it "
                            << splitName(Split(expected[s.first() + r])));
     }
@@ -355,10 +368,11 @@ DatasetCheckReport checkDataset(const fs::path& folder, const DatasetCheckOption
       report.maxOffsetError = std::max(report.maxOffsetError, error);
       ++report.strongSamples;
       PIXELCLOTH_CHECK(error <= options.tolerance,
-                       (folder / kOffsets).string() << ": row " << r << " (sample " << s.first() + r << "), vertex "
-                                                    << worst << ": stored offsets differ by " << error
-                                                    << " m from those recomputed from positions.npy on the stored "
-                                                    << "body and embedding (tolerance " << options.tolerance << " m)");
+                       (folder / kOffsets).string()
+                           << ": row " << r + 1 << " (sample " << s.first() + r << "), vertex " << worst + 1
+                           << " (counting from 1): stored offsets differ by " << error
+                           << " m from those recomputed from positions.npy on the stored "
+                           << "body and embedding (tolerance " << options.tolerance << " m)");
     }
   }
   return report;

@@ -50,7 +50,7 @@ TEST_F(CliDatasetTest, ImportInfoCheckMergeImages) {
   // A damaged copy: check and merge refuse it, naming the file.
   fs::copy(data, work_ / "damaged", fs::copy_options::recursive);
   std::string bytes = readFile(data / "positions.npy");
-  bytes[bytes.size() - 5] ^= 0x40;
+  bytes[bytes.size() - 8] ^= 0x01;  // a mantissa bit: the value stays finite (a NaN is refused even unverified)
   writeFile(work_ / "damaged" / "positions.npy", bytes);
   EXPECT_TRUE(refused(runPixelcloth({"dataset", "check", (work_ / "damaged").string()}), {"positions.npy", "CRC-32"}));
   EXPECT_TRUE(
@@ -173,7 +173,7 @@ TEST_F(CliDatasetTest, DatasetFilesAreVerifiedWhenOpenedUnlessNoVerify) {
   ASSERT_EQ(import(work_ / "objs", work_ / "poses.csv", data).status, 0);
   fs::copy(data, work_ / "damaged", fs::copy_options::recursive);
   std::string bytes = readFile(data / "positions.npy");
-  bytes[bytes.size() - 5] ^= 0x40;
+  bytes[bytes.size() - 8] ^= 0x01;  // a mantissa bit: the value stays finite (a NaN is refused even unverified)
   writeFile(work_ / "damaged" / "positions.npy", bytes);
   EXPECT_TRUE(refused(runPixelcloth({"images", "--dataset", (work_ / "damaged").string(), "--samples", "0", "--out",
                                      (work_ / "images").string()}),

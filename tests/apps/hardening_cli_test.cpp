@@ -38,11 +38,13 @@ TEST_F(HardeningCli, JsonNestedThousandsDeepIsRefusedNotACrash) {
   if (HasFatalFailure()) return;
   // The dataset's manifest (no checksum guards it) with a deep "settings"-level key.
   const fs::path tie = work_ / "tie";
+  const std::string manifest = readFile(tie / "manifest.json");
   plantBomb(tie / "manifest.json", "extra");
   EXPECT_TRUE(refused(runPixelcloth({"dataset", "info", tie.string()}),
                       {(tie / "manifest.json").string(), "nested more than 64 levels"}));
   EXPECT_TRUE(refused(runPixelcloth({"dataset", "check", tie.string()}),
                       {(tie / "manifest.json").string(), "nested more than 64 levels"}));
+  writeFile(tie / "manifest.json", manifest);
   // A model.json with a deep extra key.
   const fs::path model = work_ / "model" / "model.json";
   plantBomb(model, "notes");
@@ -50,6 +52,21 @@ TEST_F(HardeningCli, JsonNestedThousandsDeepIsRefusedNotACrash) {
                                      "--samples", "0", "--out", (work_ / "out").string()}),
                       {"model.json", "nested more than 64 levels"}));
   EXPECT_FALSE(fs::exists(work_ / "out"));
+}
+
+TEST_F(HardeningCli, ANaNInADatasetIsRefusedAlsoWithoutChecksums) {
+  const fs::path tie = work_ / "tie";
+  const CliRun made = runPixelcloth(
+      {"generate", "--garment", "necktie", "--count", "4", "--seed", "1", "--out", tie.string(), "--quiet"});
+  ASSERT_EQ(made.status, 0) << made;
+  core::NpyArray positions = core::readNpy(tie / "positions.npy");
+  reinterpret_cast<float*>(positions.bytes.data())[positions.size() - 1] = std::numeric_limits<float>::infinity();
+  core::writeNpy(tie / "positions.npy", positions);
+  // --no-verify skips the checksums, not the values: training would log inf and NaN losses.
+  EXPECT_TRUE(refused(runPixelcloth({"--no-verify", "train", "--dataset", tie.string(), "--model", "necktie", "--width",
+                                     "0.0625", "--epochs", "1", "--out", (work_ / "model").string()}),
+                      {(tie / "positions.npy").string(), "at row 4", "is not finite"}));
+  EXPECT_FALSE(fs::exists(work_ / "model"));
 }
 
 TEST_F(HardeningCli, CountsAndWeightsHaveUpperBoundsAndMessagesStayShort) {

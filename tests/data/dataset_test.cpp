@@ -450,7 +450,15 @@ TEST_F(DatasetCheck, CatchesNaN) {
   pc::writeNpy(folder / "offsets.npy", offsets);
   updateChecksum(folder, "offsets.npy");
   const std::string message = inputErrorOf([&] { pd::checkDataset(folder); });
-  EXPECT_NE(message.find("offsets.npy: value nan at row 0, element 301 is not finite"), std::string::npos) << message;
+  EXPECT_NE(message.find("offsets.npy: value nan at row 1, element 302 (counting from 1) is not finite"),
+            std::string::npos)
+      << message;
+  // Opening it checks the values too, also without the checksums (--no-verify).
+  for (const pd::Checksums checksums : {pd::Checksums::Verify, pd::Checksums::Skip})
+    EXPECT_NE(inputErrorOf([&] {
+                pd::openDataset(pd::DatasetFolder(folder, checksums));
+              }).find("offsets.npy: value nan at row 1, element 302 (counting from 1) is not finite"),
+              std::string::npos);
 }
 
 TEST_F(DatasetCheck, CatchesABadSplit) {
@@ -458,7 +466,7 @@ TEST_F(DatasetCheck, CatchesABadSplit) {
   pc::writeNpy(folder / "split.npy", std::vector<std::uint8_t>{0, 0, 7, 0, 0, 1}, {6});
   updateChecksum(folder, "split.npy");
   const std::string message = inputErrorOf([&] { pd::checkDataset(folder); });
-  EXPECT_NE(message.find("split.npy: row 2 has split value 7"), std::string::npos) << message;
+  EXPECT_NE(message.find("split.npy: row 3 has split value 7"), std::string::npos) << message;
 }
 
 TEST_F(DatasetCheck, CatchesOffsetsThatDoNotMatchPositions) {
@@ -469,7 +477,7 @@ TEST_F(DatasetCheck, CatchesOffsetsThatDoNotMatchPositions) {
   pc::writeNpy(folder / "offsets.npy", offsets);
   updateChecksum(folder, "offsets.npy");
   const std::string message = inputErrorOf([&] { pd::checkDataset(folder); });
-  EXPECT_NE(message.find("offsets.npy: row 5"), std::string::npos) << message;
+  EXPECT_NE(message.find("offsets.npy: row 6"), std::string::npos) << message;
   EXPECT_NE(message.find("recomputed"), std::string::npos) << message;
 }
 

@@ -78,6 +78,24 @@ int main(int argc, char** argv) {
     for (CLI::App* sub : verb->get_subcommands({})) verbs.push_back(sub);
   }
 
+  // A word that names no verb: say so, with the verbs (CLI11 would say only that a subcommand is required). The
+  // global options before the verb are flags, so the first word not starting with '-' is the verb.
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (!word.empty() && word.front() == '-') continue;
+    bool known = false;
+    std::string verbs;
+    for (CLI::App* verb : app.get_subcommands({})) {
+      known = known || verb->check_name(word);
+      verbs += (verbs.empty() ? "" : ", ") + verb->get_name();
+    }
+    if (!known) {
+      std::cerr << "pixelcloth: error: unknown verb '" << word << "'; the verbs are " << verbs
+                << " (pixelcloth --help describes each)\n";
+      return 2;
+    }
+    break;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -63,13 +63,20 @@ int main(int argc, char** argv) {
   pixelcloth::apps::registerExperiments(app);
   pixelcloth::apps::registerMotion(app);
   for (CLI::App* verb : app.get_subcommands({})) verb->fallthrough();
-  // Seeds are unsigned: "-1" would wrap to 2^64 - 1 and read as a valid, different seed. Refuse it in every verb.
+  // Seeds are unsigned 64-bit: "-1" would wrap to 2^64 - 1, and 2^64 or more saturate to it, each read as a valid,
+  // different seed. Refuse both in every verb.
   const CLI::Validator nonNegative(
       [](std::string& value) {
-        return !value.empty() && value.front() == '-' ? "a seed is a whole number of 0 or more, got " + value
-                                                      : std::string();
+        const std::string largest = "18446744073709551615";
+        if (!value.empty() && value.front() == '-') return "a seed is a whole number of 0 or more, got " + value;
+        const size_t digits =
+            value.find_first_not_of('0') == std::string::npos ? 1 : value.size() - value.find_first_not_of('0');
+        const std::string significant = value.substr(value.size() - digits);
+        if (digits > largest.size() || (digits == largest.size() && significant > largest))
+          return "a seed is at most " + largest + " (2^64 - 1), got " + value;
+        return std::string();
       },
-      "SEED >= 0");
+      "SEED 0 to 2^64 - 1");
   std::vector<CLI::App*> verbs = app.get_subcommands({});
   while (!verbs.empty()) {
     CLI::App* verb = verbs.back();

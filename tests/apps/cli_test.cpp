@@ -69,6 +69,9 @@ TEST_F(CliTest, NegativeSeedsAreRefusedInEveryVerb) {
                       {"--seed", "a seed is a whole number of 0 or more, got -1"}));
   EXPECT_TRUE(refused(runPixelcloth({"generate", "--count", "2", "--seed", "-5", "--out", (work / "d").string()}),
                       {"--seed", "got -5"}));
+  EXPECT_TRUE(refused(
+      runPixelcloth({"generate", "--count", "2", "--seed", "18446744073709551616", "--out", (work / "d").string()}),
+      {"--seed", "at most 18446744073709551615", "got 18446744073709551616"}));
   EXPECT_TRUE(refused(runPixelcloth({"dataset", "import", "--garment", "necktie", "--objs", work.string(), "--poses",
                                      (work / "p.csv").string(), "--dressing", work.string(), "--seed", "-2", "--out",
                                      (work / "i").string()}),

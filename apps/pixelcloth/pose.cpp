@@ -68,7 +68,8 @@ void registerPose(CLI::App& app) {
   verb->add_option("--motion", args->motion, "Motion folder from `pixelcloth motion import`: every frame posed");
   verb->add_option("--random", args->random,
                    "Number of random poses from the paper's sampler (half-normal centre line; uniform azimuth, "
-                   "sine-altitude and twist for the arms; arms inside the torso rejected)");
+                   "sine-altitude and twist for the arms; arms inside the torso rejected), 1 to 10000")
+      ->check(CLI::Range(1, 10000));
   verb->add_option("--seed", args->seed, "Seed of the random poses")->capture_default_str();
   verb->add_option("--out", args->out, "Output folder (posed_NNN.obj, poses.json, poses.npy, posed.png)")->required();
   verb->callback([args] { runPose(*args); });

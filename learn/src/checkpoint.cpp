@@ -69,7 +69,11 @@ ModelSpec specOfSidecar(const nlohmann::json& json, const std::string& context) 
   spec.pcaComponents = core::requireValue<int>(json, "pca_components", context);
   // Models written before the channel floor have no "min_channels": their layers are the plain multiplier's.
   spec.minChannels = core::valueOr(json, "min_channels", 0, context);
-  spec.validate();
+  try {
+    spec.validate();
+  } catch (const core::InputError& e) {
+    PIXELCLOTH_FAIL(context << ": " << e.what());  // "model: width 0, expected (0, 4]" names no file
+  }
   return spec;
 }
 

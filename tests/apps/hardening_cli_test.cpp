@@ -80,6 +80,8 @@ TEST_F(HardeningCli, CountsAndWeightsHaveUpperBoundsAndMessagesStayShort) {
   EXPECT_TRUE(refused(runPixelcloth({"train", "--dataset", (work_ / "tie").string(), "--edge-weight", "inf", "--out",
                                      (work_ / "model").string()}),
                       {"--edge-weight"}));
+  EXPECT_TRUE(refused(runPixelcloth({"pose", "--random", "0", "--out", (work_ / "poses").string()}),
+                      {"--random", "not in range 1 to 10000"}));
   for (const std::string& option : {"--side", "--amplitude"}) {
     const CliRun run = runPixelcloth({"bases", "--figures", (work_ / "figures").string(), option, "0"});
     EXPECT_TRUE(refused(run, {option}));

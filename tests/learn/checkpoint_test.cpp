@@ -173,3 +173,18 @@ TEST(Checkpoint, ASidecarWhoseFormatIsNotAStringIsRefused) {
   EXPECT_EQ(pt::inputErrorOf([] { pl::specOfSidecar(nlohmann::json::array(), "m/model.json"); }),
             "m/model.json: not a pixelcloth model (format '')");
 }
+
+TEST(Checkpoint, ASidecarOfImpossibleSizesNamesItsFile) {
+  const nlohmann::json good = {
+      {"format", "pixelcloth.model"}, {"architecture", "whole"}, {"width", 0.125}, {"inputs", 0}, {"values", 0},
+      {"pca_components", 0}};
+  EXPECT_NO_THROW(pl::specOfSidecar(good, "m/model.json"));
+  for (const auto& [key, value] :
+       std::vector<std::pair<std::string, nlohmann::json>>{{"width", 0}, {"inputs", -1}, {"inputs", 2000000000}}) {
+    nlohmann::json bad = good;
+    bad[key] = value;
+    const std::string message = pt::inputErrorOf([&] { pl::specOfSidecar(bad, "m/model.json"); });
+    EXPECT_EQ(message.rfind("m/model.json: model: ", 0), 0u) << message;
+    EXPECT_NE(message.find("expected"), std::string::npos) << message;
+  }
+}

@@ -18,6 +18,9 @@ void Mesh::validate(const std::string& context) const {
   for (int i = 0; i < V.rows(); ++i) {
     PIXELCLOTH_CHECK(V.row(i).allFinite(), context << ": vertex " << i + 1 << " has a non-finite coordinate (" << V(i, 0)
                                                    << ", " << V(i, 1) << ", " << V(i, 2) << ")");
+    PIXELCLOTH_CHECK(V.row(i).cwiseAbs().maxCoeff() <= kMaxCoordinate,
+                     context << ": vertex " << i + 1 << " has a coordinate beyond " << kMaxCoordinate << " in size ("
+                             << V(i, 0) << ", " << V(i, 1) << ", " << V(i, 2) << ")");
   }
   for (int f = 0; f < F.rows(); ++f) {
     for (int k = 0; k < 3; ++k) {

@@ -157,6 +157,10 @@ ObjScan scanObj(const fs::path& path, const std::string& text) {
                                                              << "' where a number was expected (line " << line << ")");
         PIXELCLOTH_CHECK(std::isfinite(value),
                          file << ": " << what << " " << number << " has a non-finite coordinate (line " << line << ")");
+        // Beyond this, squared lengths and cross products overflow to inf: no mesh is that large in any unit.
+        PIXELCLOTH_CHECK(std::abs(value) <= kMaxCoordinate, file << ": " << what << " " << number
+                                                                 << " has the coordinate " << tokens[i] << ", beyond "
+                                                                 << kMaxCoordinate << " in size (line " << line << ")");
         if (i <= 3) values[i - 1] = value;
       }
       if (isTexcoord) scan.texcoords.emplace_back(values[0], values[1]);

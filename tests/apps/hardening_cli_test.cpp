@@ -82,7 +82,7 @@ TEST_F(HardeningCli, CountsAndWeightsHaveUpperBoundsAndMessagesStayShort) {
                       {"--edge-weight"}));
   EXPECT_TRUE(refused(runPixelcloth({"pose", "--random", "0", "--out", (work_ / "poses").string()}),
                       {"--random", "not in range 1 to 10000"}));
-  for (const std::string& option : {"--side", "--amplitude"}) {
+  for (const char* option : {"--side", "--amplitude"}) {
     const CliRun run = runPixelcloth({"bases", "--figures", (work_ / "figures").string(), option, "0"});
     EXPECT_TRUE(refused(run, {option}));
     EXPECT_LT(run.err.size(), 300u) << "a range of 309-digit numbers?" << run;

@@ -210,7 +210,9 @@ TEST_F(ViewCli, SequencesPlayEveryFrameWithTheirMarkers) {
     SCOPED_TRACE(folder.filename().string());
     const nlohmann::json status = viewed(folder);
     // The captured markers of frame 1, where they are.
-    if (folder == rebuilt) EXPECT_GT(status["scenes"][0]["markers"].get<int>(), 0);
+    if (folder == rebuilt) {
+      EXPECT_GT(status["scenes"][0]["markers"].get<int>(), 0);
+    }
     ASSERT_EQ(status["scenes"].size(), 1u);
     const nlohmann::json& scene = status["scenes"][0];
     EXPECT_EQ(scene["frames"], 4);

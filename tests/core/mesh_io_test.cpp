@@ -218,6 +218,8 @@ TEST(MeshIo, ObjFaultsAreNamedWithFileAndPlace) {
             body + ": vertex 2 has a non-finite coordinate (line 2)");
   EXPECT_EQ(errorFor("body.obj", "v 0 0 0\nv 1 0 0\nv 0 1 1e999\nf 1 2 3\n"),
             body + ": vertex 3 has a non-finite coordinate (line 3)");
+  EXPECT_EQ(errorFor("body.obj", "v 0 0 0\nv 1e300 1e300 1e300\nv 0 1 0\nf 1 2 3\n"),
+            body + ": vertex 2 has the coordinate 1e300, beyond 1e+09 in size (line 2)");
   EXPECT_EQ(errorFor("body.obj", "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n"),
             body + ": vertex 2 has 'zero' where a number was expected (line 2)");
   EXPECT_EQ(errorFor("body.obj", "v 0 0\n"), body + ": vertex 1 has 2 numbers, expected 3 (line 1)");

@@ -9,6 +9,9 @@ namespace pixelcloth::core {
 
 /// A triangle mesh as Eigen matrices (libigl style), with optional per-corner texture coordinates
 /// and named per-vertex / per-face attributes.
+/// The largest coordinate a mesh may hold, in any unit: beyond it squared lengths and cross products overflow.
+constexpr double kMaxCoordinate = 1e9;
+
 struct Mesh {
   Eigen::MatrixX3d V;    ///< #V x 3 vertex positions, metres
   Eigen::MatrixX3i F;    ///< #F x 3 vertex indices, counter-clockwise seen from outside

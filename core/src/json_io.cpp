@@ -8,7 +8,18 @@ namespace pixelcloth::core {
 
 namespace fs = std::filesystem;
 
-nlohmann::json readJson(const fs::path& path) { return parseJson(readTextFile(path), path.string()); }
+// The largest JSON file read: a pose list of a long clip is tens of MB. A larger file is refused before it is read
+// (read whole and parsed, it would take several times its size in memory).
+constexpr std::uintmax_t kMaxJsonBytes = 256u << 20;
+
+nlohmann::json readJson(const fs::path& path) {
+  std::error_code ec;
+  const std::uintmax_t bytes = fs::is_regular_file(path, ec) ? fs::file_size(path, ec) : 0;
+  PIXELCLOTH_CHECK(ec || bytes <= kMaxJsonBytes, path.string() << ": " << bytes << " bytes, more than the "
+                                                               << (kMaxJsonBytes >> 20)
+                                                               << " MB a JSON file pixelcloth reads may hold");
+  return parseJson(readTextFile(path), path.string());
+}
 
 nlohmann::json parseJson(const std::string& text, const std::string& context) {
   // Nesting first, outside strings, in one pass over the bytes.

@@ -50,6 +50,15 @@ TEST(JsonIo, SyntaxErrorsGiveFileLineAndColumn) {
             (dir / "absent.json").string() + ": no such file");
 }
 
+TEST(JsonIo, AFileOfMoreThan256MbIsRefusedBeforeItIsRead) {
+  const fs::path dir = pixelcloth::testing::freshDir("huge");
+  { std::ofstream(dir / "poses.json") << "["; }
+  fs::resize_file(dir / "poses.json", (256u << 20) + 1);  // sparse: no disk is used
+  const std::string message = pixelcloth::testing::inputErrorOf([&] { pc::readJson(dir / "poses.json"); });
+  EXPECT_EQ(message, (dir / "poses.json").string() +
+                         ": 268435457 bytes, more than the 256 MB a JSON file pixelcloth reads may hold");
+}
+
 TEST(JsonIo, DeepNestingIsRefusedBeforeParsingAndBracketsInStringsDoNotCount) {
   // 150,000 levels under a key: nlohmann parses it, then overflows the stack copying it. Refused before parsing.
   const std::string bomb = "{\"settings\": " + std::string(150000, '[') + std::string(150000, ']') + "}";

@@ -10,7 +10,6 @@
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/image.h"
 #include "pixelcloth/core/json_io.h"
-#include "pixelcloth/core/npy.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/viz/pictures.h"
 #include "pixelcloth/viz/previews.h"

@@ -1,0 +1,134 @@
+// The Newton equilibrium solver: forces are the energy's gradient, a hanging sheet and a sheet draped over a sphere
+// reach the force tolerance, no vertex ever enters the collider, and friction holds cloth on a slope.
+#include "pixelcloth/sim/equilibrium.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "pixelcloth/core/error.h"
+#include "sim_fixtures.h"
+
+namespace pixelcloth::sim {
+namespace {
+
+using fixtures::sheet;
+using fixtures::sphere;
+
+TEST(Equilibrium, ForcesAreMinusTheEnergyGradientWithContactAndFriction) {
+  const core::Mesh cloth = sheet(7, 0.06, 0.1012);
+  EquilibriumSolver solver(cloth, {0});
+  solver.setPinTargets(cloth.V.row(0) + Eigen::RowVector3d(0.001, 0.002, 0));
+  solver.setColliders({sphere(0.1, 48, 96)}, std::vector<int>(cloth.numVertices(), 0));
+  // A crumpled, stretched sheet on the sphere's top, with friction lagged a little away from it: some vertices
+  // within the friction's static slip, some beyond.
+  Eigen::MatrixX3d x = cloth.V;
+  for (int v = 0; v < x.rows(); ++v)
+    x.row(v) += Eigen::RowVector3d(0.003 * std::sin(3.1 * v), 0.0004 * std::cos(1.7 * v), 0.003 * std::sin(0.9 * v));
+  Eigen::MatrixX3d start = x;
+  for (int v = 0; v < x.rows(); ++v)
+    start.row(v) += Eigen::RowVector3d(0.0015 * std::cos(v), 0, 0.0015 * std::sin(2.0 * v));
+  solver.beginStep(start);
+  const Eigen::VectorXd d = solver.distances(x);
+  ASSERT_GT(d.minCoeff(), 0);
+  ASSERT_LT(d.minCoeff(), solver.options().barrierDistance);  // some vertices feel the barrier
+  const Eigen::MatrixX3d f = solver.forces(x);
+  const double h = 1e-7;
+  for (int v = 0; v < x.rows(); v += 5)
+    for (int i = 0; i < 3; ++i) {
+      Eigen::MatrixX3d plus = x, minus = x;
+      plus(v, i) += h;
+      minus(v, i) -= h;
+      const double numeric = -(solver.energy(plus) - solver.energy(minus)) / (2 * h);
+      EXPECT_NEAR(f(v, i), numeric, 1e-5 + 1e-4 * std::abs(numeric)) << "vertex " << v << " axis " << i;
+    }
+}
+
+TEST(Equilibrium, HangingSheetReachesTheForceTolerance) {
+  const int n = 15;
+  const core::Mesh cloth = sheet(n, 0.4, 1.0);
+  EquilibriumSolver solver(cloth, {0, n - 1});
+  Eigen::MatrixX3d targets(2, 3);
+  targets.row(0) = cloth.V.row(0);
+  targets.row(1) = cloth.V.row(n - 1);
+  solver.setPinTargets(targets);
+  Eigen::MatrixX3d x = cloth.V;
+  solver.beginStep(x);
+  const EquilibriumReport report = solver.solve(x, 200);
+  EXPECT_TRUE(report.converged) << "force ratio " << report.maxForceRatio << " after " << report.iterations;
+  // Linear convergence at the end, where the sheet buckles along its free edge (the projected Hessian drops the
+  // compressive directions): 60 iterations today.
+  EXPECT_LE(report.iterations, 100);
+  const Eigen::VectorXd force = solver.forces(x).rowwise().norm();
+  EXPECT_LT(force.cwiseQuotient(solver.weights()).maxCoeff(), solver.options().forceTolerance);
+  // It hangs: the free edge has dropped, and the sheet is mirror-symmetric about x = 0.
+  EXPECT_LT(x((n - 1) * n + n / 2, 1), 0.75);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) EXPECT_NEAR(x(i * n + j, 0), -x(i * n + n - 1 - j, 0), 1e-4);
+}
+
+TEST(Equilibrium, SheetDrapedOverASphereRestsOutsideItAtTheTolerance) {
+  // The sheet's centre is pinned just above the sphere's top, so the drape is a stable equilibrium (an unpinned
+  // sheet balanced on a sphere slides off one side, which is right but slow to get to).
+  const int n = 21;
+  const core::Mesh cloth = sheet(n, 0.5, 0.104);
+  const int centre = (n / 2) * n + n / 2;
+  EquilibriumSolver solver(cloth, {centre});
+  solver.setPinTargets(cloth.V.row(centre));
+  solver.setColliders({sphere(0.1, 32, 64)}, std::vector<int>(cloth.numVertices(), 0));
+  Eigen::MatrixX3d x = cloth.V;
+  EquilibriumReport report;
+  for (int step = 0; step < 5 && !report.converged; ++step) {
+    solver.beginStep(x);
+    report = solver.solve(x, 100);
+  }
+  EXPECT_TRUE(report.converged) << "force ratio " << report.maxForceRatio << " after " << report.iterations;
+  const Eigen::VectorXd d = solver.distances(x);
+  EXPECT_GT(d.minCoeff(), 0);
+  EXPECT_LT(d.minCoeff(), solver.options().barrierDistance);  // it rests on the sphere
+  // It hangs down around the sphere: the corners fall below its equator.
+  EXPECT_LT(x(0, 1), 0.0);
+  EXPECT_GT(solver.areaRatios(x).minCoeff(), 0.25);
+}
+
+TEST(Equilibrium, FrictionHoldsASheetOnASlopeThatItSlidesOffWithout) {
+  // A small sheet on a sphere, off the top by 30 degrees: with mu = 0.9 > tan 30 it sticks near where it starts;
+  // frictionless it slides down.
+  const core::Mesh flat = sheet(5, 0.04, 0.0);
+  const double angle = M_PI / 6, r = 0.2;
+  const Eigen::Matrix3d tilt = Eigen::AngleAxisd(-angle, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  core::Mesh cloth = flat;
+  for (int v = 0; v < cloth.numVertices(); ++v)
+    cloth.V.row(v) = (tilt * (flat.V.row(v).transpose() + Eigen::Vector3d(0, r + 0.001, 0))).transpose();
+  auto slide = [&](double friction) {
+    EquilibriumOptions options;
+    options.friction = friction;
+    EquilibriumSolver solver(cloth, {}, options);
+    solver.setColliders({sphere(r, 48, 96)}, std::vector<int>(cloth.numVertices(), 0));
+    Eigen::MatrixX3d x = cloth.V;
+    solver.beginStep(x);
+    const Eigen::MatrixX3d start = x;
+    const EquilibriumReport report = solver.solve(x, 30);
+    return std::make_pair((x - start).rowwise().norm().mean(), report);
+  };
+  const auto [held, heldReport] = slide(0.9);
+  EXPECT_TRUE(heldReport.converged);
+  EXPECT_LT(held, 0.002);
+  const auto [free, freeReport] = slide(0.0);
+  EXPECT_GT(free, 0.02);
+}
+
+TEST(Equilibrium, RefusesDegeneratePatternsAndBadSettings) {
+  core::Mesh cloth = sheet(3, 0.1, 0);
+  EquilibriumOptions options;
+  options.barrierDistance = 0;
+  EXPECT_THROW(EquilibriumSolver(cloth, {}, options), core::InputError);
+  cloth.UV.row(1) = cloth.UV.row(0);
+  cloth.UV.row(3) = cloth.UV.row(0);
+  EXPECT_THROW(EquilibriumSolver(cloth, {}), core::InputError);
+  EXPECT_THROW(EquilibriumSolver(sheet(3, 0.1, 0), {42}), core::InputError);
+}
+
+}  // namespace
+}  // namespace pixelcloth::sim

@@ -22,16 +22,16 @@ void registerBench(CLI::App& app) {
       ->check(CLI::Range(10, 100000));
   auto only = std::make_shared<std::string>("all");
   verb->add_option("--only", *only,
-                   "Which figures: all, procedural (body to simulation and files), learn, stitch (the PCA filter) or "
-                   "motion (a clip to an animated garment)")
+                   "Which figures: all, procedural (body to simulation and files), learn, stitch (the PCA filter), "
+                   "motion (a clip to an animated garment) or equilibrium (the Newton solver, a few minutes)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"all", "procedural", "learn", "stitch", "motion"}));
+      ->check(CLI::IsMember({"all", "procedural", "learn", "stitch", "motion", "equilibrium"}));
   verb->callback([options, only] {
     const bench::FigureSink print = [](const nlohmann::ordered_json& figure) {
       std::cout << figure.dump() << std::endl;
     };
-    for (bench::Suite suite :
-         {bench::Suite::Procedural, bench::Suite::Learn, bench::Suite::Stitch, bench::Suite::Motion})
+    for (bench::Suite suite : {bench::Suite::Procedural, bench::Suite::Learn, bench::Suite::Stitch,
+                               bench::Suite::Motion, bench::Suite::Equilibrium})
       if (*only == "all" || *only == bench::suiteName(suite)) bench::runSuite(suite, *options, print);
   });
 }

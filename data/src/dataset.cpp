@@ -159,6 +159,7 @@ void DatasetStats::add(const SampleStats& s) {
   one.accepted = 1;
   one.acceptedAfterExtra = s.extraRounds > 0 ? 1 : 0;
   one.maxPenetration = s.maxPenetration;
+  one.maxResidualForceRatio = s.residualForceRatio;
   one.sumIterations = one.maxIterations = s.iterations;
   one.sumSeconds = s.seconds;
   one.minAreaRatio = s.minAreaRatio;
@@ -172,6 +173,7 @@ void DatasetStats::merge(const DatasetStats& o) {
   accepted += o.accepted;
   acceptedAfterExtra += o.acceptedAfterExtra;
   maxPenetration = std::max(maxPenetration, o.maxPenetration);
+  maxResidualForceRatio = std::fmax(maxResidualForceRatio, o.maxResidualForceRatio);  // NaN: not measured
   sumIterations += o.sumIterations;
   maxIterations = std::max(maxIterations, o.maxIterations);
   sumSeconds += o.sumSeconds;
@@ -190,7 +192,7 @@ json DatasetStats::toJson() const {
   const bool any = accepted > 0;
   json rejectedJson = json::object();
   for (const auto& [reason, n] : rejected) rejectedJson[reason] = n;
-  return json{{"accepted", accepted},
+  json result{{"accepted", accepted},
               {"accepted_after_extra_rounds", acceptedAfterExtra},
               {"max_penetration_mm", maxPenetration * 1000.0},
               {"mean_iterations", any ? sumIterations / accepted : 0.0},
@@ -201,6 +203,8 @@ json DatasetStats::toJson() const {
               {"max_area_ratio", any ? json(maxAreaRatio) : json(nullptr)},
               {"rejected", rejectedJson},
               {"rejected_total", rejectedTotal()}};
+  if (std::isfinite(maxResidualForceRatio)) result["max_residual_force_ratio"] = maxResidualForceRatio;
+  return result;
 }
 
 DatasetStats DatasetStats::fromJson(const json& j, const std::string& context) {
@@ -208,6 +212,8 @@ DatasetStats DatasetStats::fromJson(const json& j, const std::string& context) {
   s.accepted = core::requireValue<int>(j, "accepted", context);
   s.acceptedAfterExtra = core::valueOr<int>(j, "accepted_after_extra_rounds", 0, context);  // absent before it
   s.maxPenetration = core::requireValue<double>(j, "max_penetration_mm", context) / 1000.0;
+  if (j.contains("max_residual_force_ratio"))  // only the Newton solver measures it
+    s.maxResidualForceRatio = core::requireValue<double>(j, "max_residual_force_ratio", context);
   s.sumIterations = core::requireValue<double>(j, "mean_iterations", context) * s.accepted;
   s.maxIterations = core::requireValue<int>(j, "max_iterations", context);
   s.sumSeconds = core::requireValue<double>(j, "total_seconds", context);
@@ -249,9 +255,18 @@ struct ChunkFile {
 };
 
 json statsToJson(const SampleStats& s) {
-  return json{{"iterations", s.iterations},          {"extra_rounds", s.extraRounds}, {"residual", s.residual},
-              {"max_penetration", s.maxPenetration}, {"min_area_ratio", s.minAreaRatio},
-              {"max_area_ratio", s.maxAreaRatio},    {"seconds", s.seconds}};
+  json result{{"iterations", s.iterations},
+              {"extra_rounds", s.extraRounds},
+              {"residual", s.residual},
+              {"max_penetration", s.maxPenetration},
+              {"min_area_ratio", s.minAreaRatio},
+              {"max_area_ratio", s.maxAreaRatio},
+              {"seconds", s.seconds}};
+  if (std::isfinite(s.residualForceRatio)) {
+    result["max_residual_force_n"] = s.maxResidualForce;
+    result["residual_force_ratio"] = s.residualForceRatio;
+  }
+  return result;
 }
 
 SampleStats statsFromJson(const json& j, const std::string& context) {
@@ -259,6 +274,10 @@ SampleStats statsFromJson(const json& j, const std::string& context) {
   s.iterations = core::requireValue<int>(j, "iterations", context);
   s.extraRounds = core::valueOr<int>(j, "extra_rounds", 0, context);  // absent in datasets made before it
   s.residual = core::requireValue<double>(j, "residual", context);
+  if (j.contains("residual_force_ratio")) {  // only the Newton solver measures it
+    s.maxResidualForce = core::requireValue<double>(j, "max_residual_force_n", context);
+    s.residualForceRatio = core::requireValue<double>(j, "residual_force_ratio", context);
+  }
   s.maxPenetration = core::requireValue<double>(j, "max_penetration", context);
   s.minAreaRatio = core::requireValue<double>(j, "min_area_ratio", context);
   s.maxAreaRatio = core::requireValue<double>(j, "max_area_ratio", context);

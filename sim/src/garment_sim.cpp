@@ -5,11 +5,15 @@
 #include <chrono>
 #include <cmath>
 
+#include "pixelcloth/core/enum_names.h"
 #include "pixelcloth/core/error.h"
 
 namespace pixelcloth::sim {
 
 namespace {
+
+const core::EnumNames<SolverKind, 2> kSolverKinds{
+    "solver", {{{SolverKind::ProjectiveDynamics, "pd"}, {SolverKind::Newton, "newton"}}}};
 
 /// The pose a fraction `t` of the way from the rest pose: every joint rotation scaled along its own axis.
 body::Pose partialPose(const body::Pose& pose, double t) {
@@ -31,7 +35,23 @@ double largestJointAngle(const body::Pose& pose) {
 
 }  // namespace
 
+const char* solverKindName(SolverKind kind) { return kSolverKinds.name(kind); }
+
+SolverKind parseSolverKind(const std::string& name, const std::string& context) {
+  return kSolverKinds.fromName(name, context);
+}
+
+void NewtonSchedule::validate() const {
+  solver.validate();
+  PIXELCLOTH_CHECK(iterationsPerStep >= 1 && finalIterations >= 1 && restIterations >= 1,
+                   "simulation: Newton iteration counts must be positive");
+  PIXELCLOTH_CHECK(stepTolerance > 0 && std::isfinite(stepTolerance),
+                   "simulation: step tolerance must be positive, got " << stepTolerance);
+  PIXELCLOTH_CHECK(frictionLags >= 0, "simulation: friction lags must be >= 0, got " << frictionLags);
+}
+
 void SimulationOptions::validate() const {
+  if (kind == SolverKind::Newton) newton.validate();
   solver.validate();
   PIXELCLOTH_CHECK(stepDegrees > 0 && stepDegrees <= 180,
                    "simulation: step must be in (0, 180] degrees, got " << stepDegrees);
@@ -57,7 +77,10 @@ GarmentSimulator::GarmentSimulator(const body::Body& body, const garment::Garmen
       dressing.relaxed.rows() == n && dressing.embedding.size() == n && static_cast<int>(dressing.part.size()) == n,
       "simulation: the dressing has " << dressing.relaxed.rows() << " vertices, the garment " << n);
   dressing.embedding.validate(body.mesh.numFaces(), "simulation: dressing");
-  solver_ = std::make_unique<QuasistaticSolver>(garment.mesh, options_.pinned, options_.solver);
+  if (options_.kind == SolverKind::Newton)
+    newton_ = std::make_unique<EquilibriumSolver>(garment.mesh, options_.pinned, options_.newton.solver);
+  else
+    solver_ = std::make_unique<QuasistaticSolver>(garment.mesh, options_.pinned, options_.solver);
 
   // One collider per body part, with its own compact vertex numbering.
   std::vector<Collider> colliders;
@@ -82,7 +105,10 @@ GarmentSimulator::GarmentSimulator(const body::Body& body, const garment::Garmen
   for (const int p : dressing.part)
     PIXELCLOTH_CHECK(p >= 0 && p < static_cast<int>(body.parts.size()),
                      "simulation: dressing names body part " << p << ", the body has " << body.parts.size());
-  solver_->setColliders(std::move(colliders), dressing.part);
+  if (newton_)
+    newton_->setColliders(std::move(colliders), dressing.part);
+  else
+    solver_->setColliders(std::move(colliders), dressing.part);
 
   // Pins keep their dressed offsets from the body.
   const garment::EmbeddedFrames frames = garment::embeddedFrames(body.mesh.V, body.mesh.F, dressing.embedding);
@@ -105,20 +131,36 @@ GarmentSimulator::GarmentSimulator(const body::Body& body, const garment::Garmen
   placeBody(body::Pose::identity());
   rest_ = settled ? *settled : dressing.relaxed;
   PIXELCLOTH_CHECK(rest_.rows() == n, "simulation: the settled garment has " << rest_.rows() << " vertices, not " << n);
-  RelaxReport report;
-  if (!settled) {
-    // Frictionless: the dressing's leftover compression relaxes instead of sticking to the body.
-    solver_->setFriction(0);
-    report = solver_->relax(rest_, options_.restIterations);
-    solver_->setFriction(options_.solver.friction);
-    restSettled_ = report.converged;
+  if (newton_) {
+    EquilibriumReport report;
+    if (!settled) {
+      // Frictionless: the dressing's leftover compression relaxes instead of sticking to the body.
+      newton_->setFriction(0);
+      newton_->beginStep(rest_);
+      report = newton_->solve(rest_, options_.newton.restIterations);
+      newton_->setFriction(options_.newton.solver.friction);
+      restSettled_ = report.converged;
+    }
+    restStats_ = measure(rest_);
+    restStats_.iterations = report.iterations;
+    restStats_.residual = report.lastMove;
+    recordForce(restStats_, rest_);
+  } else {
+    RelaxReport report;
+    if (!settled) {
+      // Frictionless: the dressing's leftover compression relaxes instead of sticking to the body.
+      solver_->setFriction(0);
+      report = solver_->relax(rest_, options_.restIterations);
+      solver_->setFriction(options_.solver.friction);
+      restSettled_ = report.converged;
+    }
+    // Springs on the contacts of the settled drape, for good: no refactoring per sample, and every simulator built
+    // from the same drape (one per thread) gives the same sample for the same pose.
+    solver_->freezeContactSprings(rest_);
+    restStats_ = measure(rest_);
+    restStats_.iterations = report.iterations;
+    restStats_.residual = report.residual;
   }
-  // Springs on the contacts of the settled drape, for good: no refactoring per sample, and every simulator built
-  // from the same drape (one per thread) gives the same sample for the same pose.
-  solver_->freezeContactSprings(rest_);
-  restStats_ = measure(rest_);
-  restStats_.iterations = report.iterations;
-  restStats_.residual = report.residual;
   restStats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   PIXELCLOTH_CHECK(rest_.allFinite(), "simulation: the garment did not settle in the rest pose (not finite)");
 }
@@ -133,10 +175,17 @@ void GarmentSimulator::placeBody(const body::Pose& pose) {
     for (size_t i = 0; i < vertices.size(); ++i) V.row(static_cast<int>(i)) = posedBody_.row(vertices[i]);
     placed.push_back(std::move(V));
   }
-  solver_->moveColliders(placed);
+  if (newton_)
+    newton_->moveColliders(placed);
+  else
+    solver_->moveColliders(placed);
   if (!options_.pinned.empty()) {
     const garment::EmbeddedFrames frames = garment::embeddedFrames(posedBody_, body_.mesh.F, pinEmbedding_);
-    solver_->setPinTargets(garment::positionsFromOffsets(frames, restOffsets_));
+    const Eigen::MatrixX3d targets = garment::positionsFromOffsets(frames, restOffsets_);
+    if (newton_)
+      newton_->setPinTargets(targets);
+    else
+      solver_->setPinTargets(targets);
   }
 }
 
@@ -146,10 +195,11 @@ data::SampleStats GarmentSimulator::measure(const Eigen::MatrixX3d& x) const {
     stats.rejection = data::Rejection::NotFinite;
     return stats;
   }
-  const Eigen::VectorXd ratio = solver_->areaRatios(x);
+  const Eigen::VectorXd ratio = newton_ ? newton_->areaRatios(x) : solver_->areaRatios(x);
   stats.minAreaRatio = ratio.minCoeff();
   stats.maxAreaRatio = ratio.maxCoeff();
-  stats.maxPenetration = solver_->penetration(x).maxCoeff();
+  stats.maxPenetration =
+      newton_ ? std::max(0.0, -newton_->distances(x).minCoeff()) : solver_->penetration(x).maxCoeff();
   if (stats.minAreaRatio < options_.minAreaRatio)
     stats.rejection = data::Rejection::TriangleShrank;
   else if (stats.maxAreaRatio > options_.maxAreaRatio)
@@ -159,39 +209,36 @@ data::SampleStats GarmentSimulator::measure(const Eigen::MatrixX3d& x) const {
   return stats;
 }
 
+double GarmentSimulator::coulombRatio(const Eigen::MatrixX3d& x) const {
+  return x.allFinite() ? newton_->coulombExcess(x).cwiseQuotient(newton_->weights()).maxCoeff() : 0.0;
+}
+
+void GarmentSimulator::recordForce(data::SampleStats& stats, const Eigen::MatrixX3d& x) const {
+  if (!newton_ || !x.allFinite()) return;
+  const Eigen::VectorXd force = newton_->forces(x).rowwise().norm();
+  stats.maxResidualForce = force.maxCoeff();
+  stats.residualForceRatio = force.cwiseQuotient(newton_->weights()).maxCoeff();
+}
+
+void GarmentSimulator::rideAlong(Eigen::MatrixX3d& x, const body::Pose& pose) {
+  // The cloth rides with the body to the next pose (constant offsets in the embedded frames), so the solver only
+  // relaxes what skinning gets wrong instead of having the arms drag the sleeves through contact.
+  const Eigen::MatrixX3d offsets =
+      garment::offsetsFromPositions(garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), x);
+  placeBody(pose);
+  x = garment::positionsFromOffsets(garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), offsets);
+}
+
 data::Sample GarmentSimulator::simulate(const body::Pose& pose) {
   const auto start = std::chrono::steady_clock::now();
   const int steps = std::max(1, static_cast<int>(std::ceil(largestJointAngle(pose) / options_.stepDegrees)));
   Eigen::MatrixX3d x = rest_;
-  int iterations = 0;
-  RelaxReport report;
-  placeBody(body::Pose::identity());
-  for (int step = 1; step <= steps && x.allFinite(); ++step) {
-    // The cloth rides with the body to the next pose (constant offsets in the embedded frames), so the solver only
-    // relaxes what skinning gets wrong instead of having the arms drag the sleeves through contact.
-    const Eigen::MatrixX3d offsets =
-        garment::offsetsFromPositions(garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), x);
-    placeBody(partialPose(pose, static_cast<double>(step) / steps));
-    x = garment::positionsFromOffsets(garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), offsets);
-    if (step == steps) solver_->setContactRecheckEvery(options_.finalRecheckEvery);
-    report = solver_->relax(x, step < steps ? options_.iterationsPerStep : options_.finalIterations);
-    iterations += report.iterations;
-  }
   data::Sample sample;
-  sample.stats = measure(x);
-  // Not there yet: relax on from where it is (SimulationOptions::extraIterations).
-  int rounds = 0;
-  for (int extra = 0; extra < options_.extraIterations && sample.stats.rejection != data::Rejection::None &&
-                      sample.stats.rejection != data::Rejection::NotFinite;
-       extra += options_.extraRound, ++rounds) {
-    report = solver_->relax(x, std::min(options_.extraRound, options_.extraIterations - extra));
-    iterations += report.iterations;
-    sample.stats = measure(x);
+  if (newton_) {
+    sample.stats = simulateNewton(pose, steps, x);
+  } else {
+    sample.stats = simulateProjective(pose, steps, x);
   }
-  solver_->setContactRecheckEvery(options_.solver.contactRecheckEvery);
-  sample.stats.iterations = iterations;
-  sample.stats.extraRounds = rounds;
-  sample.stats.residual = report.residual;
   sample.pose = pose.toVector();
   sample.pose = sample.pose.head(garment_.traits.poseSize()).eval();
   sample.positions = x.cast<float>();
@@ -203,6 +250,68 @@ data::Sample GarmentSimulator::simulate(const body::Pose& pose) {
   }
   sample.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return sample;
+}
+
+data::SampleStats GarmentSimulator::simulateNewton(const body::Pose& pose, int steps, Eigen::MatrixX3d& x) {
+  const NewtonSchedule& schedule = options_.newton;
+  int iterations = 0;
+  EquilibriumReport report;
+  placeBody(body::Pose::identity());
+  for (int step = 1; step <= steps; ++step) {
+    rideAlong(x, partialPose(pose, static_cast<double>(step) / steps));
+    newton_->beginStep(x);  // friction lagged where the step starts
+    if (step < steps) {
+      iterations += newton_->solve(x, schedule.iterationsPerStep, schedule.stepTolerance).iterations;
+      continue;
+    }
+    report = newton_->solve(x, schedule.finalIterations);
+    iterations += report.iterations;
+    // Friction lagged at the step's start may hold vertices whose contact has since let go or eased: lag it again
+    // where the cloth now is, until every contact's friction is within its Coulomb bound (IPC's lagged iterations).
+    for (int lag = 0;
+         lag < schedule.frictionLags && report.converged && coulombRatio(x) >= schedule.solver.forceTolerance; ++lag) {
+      newton_->updateFriction(x);
+      report = newton_->solve(x, schedule.finalIterations);
+      iterations += report.iterations;
+    }
+  }
+  data::SampleStats stats = measure(x);
+  // The stopping measure: the largest net force on a vertex, friction beyond its Coulomb bound counted as unbalanced.
+  const double excess = coulombRatio(x);
+  const bool converged = report.converged && excess < schedule.solver.forceTolerance;
+  if (stats.rejection == data::Rejection::None && !converged) stats.rejection = data::Rejection::NotConverged;
+  stats.iterations = iterations;
+  stats.residual = report.lastMove;
+  stats.maxResidualForce = report.maxForce;
+  stats.residualForceRatio = std::max(report.maxForceRatio, excess);
+  return stats;
+}
+
+data::SampleStats GarmentSimulator::simulateProjective(const body::Pose& pose, int steps, Eigen::MatrixX3d& x) {
+  int iterations = 0;
+  RelaxReport report;
+  placeBody(body::Pose::identity());
+  for (int step = 1; step <= steps && x.allFinite(); ++step) {
+    rideAlong(x, partialPose(pose, static_cast<double>(step) / steps));
+    if (step == steps) solver_->setContactRecheckEvery(options_.finalRecheckEvery);
+    report = solver_->relax(x, step < steps ? options_.iterationsPerStep : options_.finalIterations);
+    iterations += report.iterations;
+  }
+  data::SampleStats stats = measure(x);
+  // Not there yet: relax on from where it is (SimulationOptions::extraIterations).
+  int rounds = 0;
+  for (int extra = 0; extra < options_.extraIterations && stats.rejection != data::Rejection::None &&
+                      stats.rejection != data::Rejection::NotFinite;
+       extra += options_.extraRound, ++rounds) {
+    report = solver_->relax(x, std::min(options_.extraRound, options_.extraIterations - extra));
+    iterations += report.iterations;
+    stats = measure(x);
+  }
+  solver_->setContactRecheckEvery(options_.solver.contactRecheckEvery);
+  stats.iterations = iterations;
+  stats.extraRounds = rounds;
+  stats.residual = report.residual;
+  return stats;
 }
 
 }  // namespace pixelcloth::sim

@@ -50,6 +50,33 @@ body::Body makeBody(const GenerateOptions& options, nlohmann::json& description)
 }
 
 nlohmann::json simulationSettings(const SimulationOptions& s) {
+  if (s.kind == SolverKind::Newton) {
+    const NewtonSchedule& n = s.newton;
+    const EquilibriumOptions& q = n.solver;
+    return {{"solver", "newton"},
+            {"method", "Newton, projected Hessian, CHOLMOD; IPC barrier contact, lagged friction; pattern rest shape"},
+            {"stretch_stiffness_n_per_m", q.stretchStiffness},
+            {"compression_ratio", q.compressionRatio},
+            {"bend_stiffness_n_m", q.bendStiffness},
+            {"density_kg_per_m2", q.density},
+            {"gravity", q.gravity},
+            {"barrier_distance_m", q.barrierDistance},
+            {"barrier_stiffness_n_per_m3", q.barrierStiffness},
+            {"friction", q.friction},
+            {"friction_slip_m", q.frictionSlip},
+            {"force_tolerance_of_weight", q.forceTolerance},
+            {"max_penetration_m", s.maxPenetration},
+            {"step_degrees", s.stepDegrees},
+            {"iterations_per_step", n.iterationsPerStep},
+            {"step_tolerance_of_weight", n.stepTolerance},
+            {"final_iterations", n.finalIterations},
+            {"friction_lags", n.frictionLags},
+            {"rest_iterations", n.restIterations},
+            {"min_area_ratio", s.minAreaRatio},
+            {"max_area_ratio", s.maxAreaRatio},
+            {"pinned_vertices", s.pinned.size()},
+            {"pose_sampler", "appendix: half-normal centre line, azimuth / sine-altitude / twist arms, pruned"}};
+  }
   const QuasistaticOptions& q = s.solver;
   return {{"solver", "projective dynamics, proximal, pattern rest shape"},
           {"stretch_stiffness_n_per_m", q.stretchStiffness},
@@ -161,7 +188,14 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
     PIXELCLOTH_INFO("generate: settling the garment in the rest pose");
     GarmentSimulator first(body, garment, dressing, options.simulation);
     const data::SampleStats& rest = first.restStats();
-    if (!first.restSettled())
+    const bool newton = options.simulation.kind == SolverKind::Newton;
+    if (!first.restSettled() && newton)
+      PIXELCLOTH_WARN("generate: the rest drape did not settle: the Newton solver stopped at its cap of "
+                      << options.simulation.newton.restIterations << " iterations with a net force of "
+                      << 100 * rest.residualForceRatio << "% of a vertex's weight left (" << rest.seconds
+                      << " s); the samples start from this drape"
+                      << (advice.empty() ? "" : " (the garment does not fit the body: see above)"));
+    else if (!first.restSettled())
       PIXELCLOTH_WARN("generate: the rest drape did not settle: the solver stopped at its cap of "
                       << options.simulation.restIterations << " iterations with vertices still moving "
                       << 1000 * rest.residual << " mm an iteration (" << rest.seconds

@@ -166,6 +166,9 @@ TEST_F(CliTest, GenerateRefusesBadSettings) {
       runPixelcloth({"generate", "--count", "4", "--body", (out / "nowhere").string(), "--out", (out / "d").string()});
   EXPECT_EQ(body.status, 2) << body;
   EXPECT_NE(body.err.find("nowhere"), std::string::npos) << body;
+  const CliRun solver = runPixelcloth({"generate", "--count", "4", "--solver", "ipc", "--out", (out / "e").string()});
+  EXPECT_TRUE(refused(solver, {"generate --solver", "'ipc'", "pd or newton"})) << solver;
+  EXPECT_FALSE(fs::exists(out / "e"));
 }
 
 TEST_F(CliDatasetTest, DatasetFilesAreVerifiedWhenOpenedUnlessNoVerify) {

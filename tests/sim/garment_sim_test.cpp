@@ -101,5 +101,87 @@ TEST_F(TShirtSimulation, LoweredArmsCarryTheirSleevesAndASampleDependsOnlyOnItsP
   EXPECT_EQ((other.simulate(armsDown(40)).positions - first.positions).cwiseAbs().maxCoeff(), 0.0f);
 }
 
+// The Newton solver (SolverKind::Newton) on a coarser T-shirt of the same pattern, so that its factorisations stay
+// cheap: the rest drape and a kept pose are static equilibria, checked against the net force recomputed here; a pose
+// that cannot get there within its budget is rejected as not converged, never kept.
+TEST(NewtonSimulation, RestDrapeAndAKeptPoseAreEquilibriaAndAnUnfinishedOneIsRejected) {
+  const body::Body body = body::makeMannequin();
+  garment::TShirtOptions coarse;
+  coarse.targetVertices = 1000;
+  const garment::Garment shirt = garment::makeTShirt(coarse);
+  const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), shirt, cage::garmentCage(shirt));
+  SimulationOptions options;
+  options.kind = SolverKind::Newton;
+  GarmentSimulator simulator(body, shirt, dressing, options);
+  const double tolerance = options.newton.solver.forceTolerance;
+  EXPECT_TRUE(simulator.restSettled());
+  EXPECT_LT(simulator.restStats().residualForceRatio, tolerance);
+  EXPECT_EQ(simulator.restStats().maxPenetration, 0.0);  // the barrier keeps every vertex outside
+
+  Eigen::Matrix<double, 10, 3> euler = Eigen::Matrix<double, 10, 3>::Zero();
+  euler(1, 0) = 10;   // spine: bend forward
+  euler(5, 2) = -30;  // l_arm down
+  euler(8, 2) = 30;   // r_arm down
+  const body::Pose pose = body::Pose::fromEulerDegrees(euler);
+  const data::Sample sample = simulator.simulate(pose);
+  ASSERT_EQ(sample.stats.rejection, data::Rejection::None)
+      << data::rejectionName(sample.stats.rejection) << ", " << sample.stats.residualForceRatio << " of the weight";
+  EXPECT_LT(sample.stats.residualForceRatio, tolerance);
+  EXPECT_GT(sample.stats.maxResidualForce, 0.0);
+  EXPECT_EQ(sample.stats.maxPenetration, 0.0);
+  // The same measure from a solver of our own, with the body placed in the pose: on every vertex out of the
+  // barrier's reach (no contact, no friction) the net force of stretch, bending and gravity is within the tolerance.
+  EquilibriumSolver check(shirt.mesh, {}, options.newton.solver);
+  std::vector<Collider> colliders;
+  const Eigen::MatrixX3d posed = body.posedVertices(pose);
+  for (const body::BodyPart& part : body.parts) {
+    Collider collider;
+    collider.V = posed;
+    collider.F.resize(static_cast<int>(part.faces.size()), 3);
+    for (size_t f = 0; f < part.faces.size(); ++f) collider.F.row(static_cast<int>(f)) = body.mesh.F.row(part.faces[f]);
+    colliders.push_back(std::move(collider));
+  }
+  check.setColliders(std::move(colliders), dressing.part);
+  check.setFriction(0);
+  const Eigen::MatrixX3d x = sample.positions.cast<double>();
+  const Eigen::VectorXd ratio = check.forces(x).rowwise().norm().cwiseQuotient(check.weights());
+  const Eigen::VectorXd distance = check.distances(x);
+  int free = 0;
+  for (int v = 0; v < x.rows(); ++v)
+    if (distance(v) > 1.5 * options.newton.solver.barrierDistance) {
+      ++free;
+      // Positions are stored as floats: their rounding (0.1 um at 1.5 m) strains the 60 N/m membrane by 3e-6,
+      // about 1 to 2% of a vertex's weight on this mesh.
+      EXPECT_LT(ratio(v), 4 * tolerance) << "vertex " << v << " at " << distance(v) << " m";
+    }
+  EXPECT_GT(free, x.rows() / 4);
+
+  // The same pose again, after another one: the same shirt.
+  simulator.simulate(body::Pose::fromEulerDegrees(-euler));
+  EXPECT_EQ((simulator.simulate(pose).positions - sample.positions).cwiseAbs().maxCoeff(), 0.0f);
+
+  // Two Newton iterations at the target pose are not enough: rejected, never kept half-way.
+  SimulationOptions hurried = options;
+  hurried.newton.finalIterations = 2;
+  GarmentSimulator quick(body, shirt, dressing, hurried, &simulator.restDrape());
+  const data::Sample unfinished = quick.simulate(pose);
+  EXPECT_EQ(unfinished.stats.rejection, data::Rejection::NotConverged);
+  EXPECT_GT(unfinished.stats.residualForceRatio, tolerance);
+}
+
+TEST(SimulationOptions, SolverNamesAndNewtonScheduleOutOfRangeAreRefused) {
+  EXPECT_EQ(parseSolverKind("newton", "test"), SolverKind::Newton);
+  EXPECT_EQ(parseSolverKind("pd", "test"), SolverKind::ProjectiveDynamics);
+  EXPECT_NE(testing::inputErrorOf([] { parseSolverKind("ipc", "generate --solver"); }).find("expected pd or newton"),
+            std::string::npos);
+  SimulationOptions options;
+  options.kind = SolverKind::Newton;
+  options.newton.frictionLags = -1;
+  EXPECT_NE(testing::inputErrorOf([&] { options.validate(); }).find("friction lags"), std::string::npos);
+  options.newton.frictionLags = 0;
+  options.newton.stepTolerance = 0;
+  EXPECT_NE(testing::inputErrorOf([&] { options.validate(); }).find("step tolerance"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace pixelcloth::sim

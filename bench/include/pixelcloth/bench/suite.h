@@ -12,8 +12,9 @@
 namespace pixelcloth::bench {
 
 /// The suites: body to simulation and files; the decoders at the paper's width; the PCA filter's fit.
-enum class Suite { Procedural, Learn, Stitch, Motion };
-const char* suiteName(Suite suite);  ///< "procedural", "learn", "stitch", "motion"
+/// The Newton equilibrium solver's T-shirt figures (a few minutes) are a suite of their own.
+enum class Suite { Procedural, Learn, Stitch, Motion, Equilibrium };
+const char* suiteName(Suite suite);  ///< "procedural", "learn", "stitch", "motion", "equilibrium"
 Suite suiteFromName(const std::string& name, const std::string& context);  ///< InputError naming `context` otherwise
 
 /// Receives each figure as soon as it is measured.

@@ -91,6 +91,8 @@ struct DatasetStats {
   int accepted = 0;
   int acceptedAfterExtra = 0;  ///< of those, accepted only after extra rounds (SampleStats::extraRounds > 0)
   double maxPenetration = 0;   ///< metres, max over samples
+  /// Largest SampleStats::residualForceRatio over the samples that measured one (NaN: none did).
+  double maxResidualForceRatio = std::numeric_limits<double>::quiet_NaN();
   double sumIterations = 0;
   int maxIterations = 0;
   double sumSeconds = 0;
@@ -104,7 +106,8 @@ struct DatasetStats {
   int rejectedTotal() const;
   /// {"accepted", "accepted_after_extra_rounds", "max_penetration_mm", "mean_iterations", "max_iterations",
   ///  "mean_seconds", "total_seconds", "min_area_ratio", "max_area_ratio", "rejected": {reason: count},
-  ///  "rejected_total"}; ratios are null when no sample was accepted.
+  ///  "rejected_total"}, and "max_residual_force_ratio" when the samples measured it; area ratios are null when no
+  ///  sample was accepted.
   nlohmann::json toJson() const;
   static DatasetStats fromJson(const nlohmann::json& json, const std::string& context);
 };

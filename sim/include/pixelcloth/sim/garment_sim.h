@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "pixelcloth/body/body.h"
@@ -9,13 +10,54 @@
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/data/sample.h"
 #include "pixelcloth/garment/garment.h"
+#include "pixelcloth/sim/equilibrium.h"
 #include "pixelcloth/sim/quasistatic.h"
 
 namespace pixelcloth::sim {
 
+/// Which quasistatic solver drapes the garment: projective dynamics with contact springs (fast, stops after a fixed
+/// schedule short of equilibrium: docs/simulation.md), or Newton on the total energy with IPC's barrier, run until
+/// the largest net force on a vertex is below a fraction of its weight (a verified equilibrium, about 40 times
+/// slower today: docs/notes/2026-12-06-newton-equilibrium-solver.md).
+enum class SolverKind { ProjectiveDynamics, Newton };
+/// "pd", "newton".
+const char* solverKindName(SolverKind kind);
+/// The kind named `name`; InputError "<context>: unknown solver ..." naming both choices otherwise.
+SolverKind parseSolverKind(const std::string& name, const std::string& context);
+
+/// The Newton solver's material, contact and stopping settings and its continuation schedule.
+struct NewtonSchedule {
+  /// Frictionless by default: with lagged friction the target pose converged, but friction lagged at the step's
+  /// start then still held contacts that had let go, and four more lags did not bring every contact within its
+  /// Coulomb bound on the T-shirt (docs/notes/2026-12-06-newton-equilibrium-solver.md). A friction coefficient here
+  /// turns the lags on (`frictionLags`).
+  EquilibriumOptions solver = [] {
+    EquilibriumOptions frictionless;
+    frictionless.friction = 0;
+    return frictionless;
+  }();
+  /// Newton iterations at most per continuation step before the last, which stops earlier once the largest net
+  /// force on a vertex is below `stepTolerance` of its weight: the steps only carry the cloth along; the target pose
+  /// is solved to the solver's own tolerance.
+  int iterationsPerStep = 8;
+  double stepTolerance = 0.2;
+  /// Newton iterations at most at the target pose, per friction lag (`frictionLags` + 1 solves): a pose that does not
+  /// reach the force tolerance within them is rejected as `not_converged`.
+  int finalIterations = 300;
+  /// After the target pose is solved, friction is lagged again at the solution (normal forces and tangent planes)
+  /// and solved again while some contact's friction exceeds its Coulomb bound (a contact let go or eased since the
+  /// lag), at most this many times (IPC's lagged iterations); a pose still beyond it is rejected as not converged.
+  int frictionLags = 4;
+  int restIterations = 400;  ///< Newton iterations at most to settle the dressed garment in the rest pose (once)
+  void validate() const;
+};
+
 /// Settings of a garment simulation: the solver's material and tolerance, the continuation schedule and the
-/// paper's acceptance test.
+/// paper's acceptance test. `solver` and the schedule below it are projective dynamics'; `newton` is used instead
+/// when `kind` is SolverKind::Newton.
 struct SimulationOptions {
+  SolverKind kind = SolverKind::ProjectiveDynamics;
+  NewtonSchedule newton;
   QuasistaticOptions solver;
   double stepDegrees = 25;     ///< continuation: no joint turns by more than this between two steps
   /// Solver iterations per continuation step before the last, and at most at the target pose (fewer if converged).
@@ -54,7 +96,10 @@ struct SimulationOptions {
 /// in the frame of its embedded body point, so arms carry their sleeves instead of dragging them through contact),
 /// then relaxes; the last step relaxes longest. Friction makes the result depend on this path, as it would for a
 /// real shirt. Each cloth vertex collides only with its primary body part (Dressing::part); there is no
-/// self-collision. Not thread-safe: one per thread.
+/// self-collision. With SolverKind::Newton each step is a Newton solve (EquilibriumSolver) with friction lagged at
+/// its start, the rest settle and the target pose are solved until the largest net force on a vertex is below the
+/// tolerance, and a pose that does not get there is rejected as `not_converged` (no extra rounds). Not thread-safe:
+/// one per thread.
 class GarmentSimulator {
  public:
   /// `settled`: the rest drape of another simulator of the same garment, body and options (skips settling again).
@@ -70,18 +115,30 @@ class GarmentSimulator {
   const Eigen::MatrixX3d& restDrape() const { return rest_; }
   /// Statistics of the rest settle.
   const data::SampleStats& restStats() const { return restStats_; }
-  /// False when the rest settle stopped at SimulationOptions::restIterations with vertices still moving.
+  /// False when the rest settle stopped at its cap (SimulationOptions::restIterations, NewtonSchedule::
+  /// restIterations) with vertices still moving or above the force tolerance.
   bool restSettled() const { return restSettled_; }
 
  private:
   void placeBody(const body::Pose& pose);
   data::SampleStats measure(const Eigen::MatrixX3d& x) const;
+  /// Moves the body to `pose`, the cloth `x` riding along in the frames of its embedded body points.
+  void rideAlong(Eigen::MatrixX3d& x, const body::Pose& pose);
+  /// The continuation to `pose` in `steps` steps from `x` (the rest drape, updated in place), with either solver.
+  data::SampleStats simulateNewton(const body::Pose& pose, int steps, Eigen::MatrixX3d& x);
+  data::SampleStats simulateProjective(const body::Pose& pose, int steps, Eigen::MatrixX3d& x);
+  /// The largest friction force beyond its Coulomb bound at `x` (EquilibriumSolver::coulombExcess), over the
+  /// vertex's weight.
+  double coulombRatio(const Eigen::MatrixX3d& x) const;
+  /// The Newton solver's net-force measure at `x` into `stats` (nothing for projective dynamics).
+  void recordForce(data::SampleStats& stats, const Eigen::MatrixX3d& x) const;
 
   const body::Body& body_;
   const garment::Garment& garment_;
   const cage::Dressing& dressing_;
   SimulationOptions options_;
-  std::unique_ptr<QuasistaticSolver> solver_;
+  std::unique_ptr<QuasistaticSolver> solver_;   ///< projective dynamics, or
+  std::unique_ptr<EquilibriumSolver> newton_;   ///< the Newton solver: exactly one of the two is set
   std::vector<std::vector<int>> partVertices_;  ///< per body part, its body vertices (collider vertex order)
   Eigen::MatrixX3d restOffsets_;                ///< offsets of the pinned vertices in the rest pose
   garment::Embedding pinEmbedding_;             ///< the embedding of the pinned vertices alone

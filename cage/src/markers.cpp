@@ -141,6 +141,12 @@ nlohmann::json toJson(const MarkerSet& markers) {
 
 MarkerSet markersFromJson(const nlohmann::json& json, const std::string& context) {
   MarkerSet set;
+  PIXELCLOTH_CHECK(json.is_object(), context << ": expected a JSON object {format, garment, markers}");
+  if (json.contains("format")) {  // written by pixelcloth; a hand-made file may leave it out
+    const std::string format = core::requireValue<std::string>(json, "format", context);
+    PIXELCLOTH_CHECK(format == "pixelcloth.markers",
+                     context << ": format '" << format << "', expected 'pixelcloth.markers' (a markers file)");
+  }
   set.garment = core::requireValue<std::string>(json, "garment", context);
   const nlohmann::json& list = core::requireField(json, "markers", context);
   PIXELCLOTH_CHECK(list.is_array(), context << ": field 'markers' is " << list.type_name() << ", expected an array");

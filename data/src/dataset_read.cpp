@@ -5,6 +5,8 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <tuple>
+#include <vector>
 
 #include "dataset_internal.h"
 #include "pixelcloth/body/skeleton.h"
@@ -19,6 +21,41 @@ namespace pixelcloth::data {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace detail;
+
+namespace {
+
+/// The manifest's `arrays` (what a reader of another language goes by) agree with its settings, which the arrays
+/// themselves are checked against when read: the same file names and shapes.
+void checkDeclaredArrays(const json& arrays, const DatasetSettings& s, std::int64_t rows, const std::string& file) {
+  PIXELCLOTH_CHECK(arrays.is_object(), file << ": 'arrays' is " << arrays.type_name() << ", expected an object");
+  const std::int64_t V = s.vertexCount;
+  const std::vector<std::tuple<const char*, const char*, std::vector<std::int64_t>>> expected = {
+      {"poses", kPoses, {rows, s.poseSize}},
+      {"positions", kPositions, {rows, V, 3}},
+      {"offsets", kOffsets, {rows, V, 3}},
+      {"split", kSplit, {rows}},
+      {"rest_positions", kRestPositions, {V, 3}}};
+  for (const auto& [name, fileName, shape] : expected) {
+    const std::string where = file + ": arrays: " + name;
+    const json& entry = core::requireField(arrays, name, file + ": arrays");
+    PIXELCLOTH_CHECK(entry.is_object(), where << " is " << entry.type_name() << ", expected an object");
+    const std::string declaredFile = core::requireValue<std::string>(entry, "file", where);
+    PIXELCLOTH_CHECK(declaredFile == fileName,
+                     where << ": file '" << declaredFile << "', expected '" << fileName << "'");
+    const json& declared = core::requireField(entry, "shape", where);
+    bool same = declared.is_array() && declared.size() == shape.size();
+    for (size_t k = 0; same && k < shape.size(); ++k)
+      same = declared[k].is_number_integer() && declared[k].get<std::int64_t>() == shape[k];
+    if (!same) {
+      std::ostringstream want;
+      for (size_t k = 0; k < shape.size(); ++k) want << (k ? ", " : "[") << shape[k];
+      PIXELCLOTH_FAIL(where << ": shape " << declared.dump() << ", but the manifest's rows, vertex count and pose size "
+                            << "make it " << want.str() << "]");
+    }
+  }
+}
+
+}  // namespace
 
 DatasetInfo readDatasetInfo(const DatasetFolder& where) {
   const fs::path& folder = where.path;
@@ -38,6 +75,11 @@ DatasetInfo readDatasetInfo(const DatasetFolder& where) {
   info.manifest = core::readJson(path);
   const json& m = info.manifest;
   PIXELCLOTH_CHECK(m.is_object(), file << ": expected a JSON object");
+  if (m.contains("format")) {  // written since the first version; a hand-made manifest may leave it out
+    const std::string format = core::requireValue<std::string>(m, "format", file);
+    PIXELCLOTH_CHECK(format == "pixelcloth.dataset",
+                     file << ": format '" << format << "', expected 'pixelcloth.dataset' (a dataset's manifest)");
+  }
   const int version = core::requireValue<int>(m, "format_version", file);
   PIXELCLOTH_CHECK(version == kDatasetFormatVersion,
                    file << ": format_version " << version << ", expected " << kDatasetFormatVersion);
@@ -46,6 +88,7 @@ DatasetInfo readDatasetInfo(const DatasetFolder& where) {
   PIXELCLOTH_CHECK(rows == info.settings.rows(), file << ": rows " << rows << ", but shard "
                                                       << info.settings.shard.toString() << " of " << info.settings.count
                                                       << " samples has " << info.settings.rows());
+  if (m.contains("arrays")) checkDeclaredArrays(m["arrays"], info.settings, rows, file);
   const json& counts = core::requireField(m, "counts", file);
   info.counts.train = core::requireValue<int>(counts, "train", file + ": counts");
   info.counts.regularisation = core::requireValue<int>(counts, "regularisation", file + ": counts");
@@ -91,7 +134,11 @@ std::string DatasetInfo::summary() const {
   out << std::setprecision(2) << "solver       accepted " << stats.accepted << ", mean iterations "
       << st["mean_iterations"].get<double>() << " (max " << stats.maxIterations << "), mean "
       << st["mean_seconds"].get<double>() << " s per sample, " << stats.sumSeconds << " s in all\n";
-  out << std::setprecision(3) << "penetration  max " << stats.maxPenetration * 1000.0 << " mm\n";
+  out << std::setprecision(3);
+  if (std::isfinite(stats.maxResidualForceRatio))
+    out << "equilibrium  largest net force on a vertex " << 100 * stats.maxResidualForceRatio
+        << "% of its weight (Newton solver)\n";
+  out << "penetration  max " << stats.maxPenetration * 1000.0 << " mm\n";
   if (stats.accepted > 0)
     out << "area ratio   " << stats.minAreaRatio << " to " << stats.maxAreaRatio << " (3D area / pattern area)\n";
   out << "rejected     " << stats.rejectedTotal();
@@ -182,10 +229,12 @@ Dataset openDataset(const DatasetFolder& where) {
   d.poses = core::readNpyMatrixF(folder / kPoses, rows, s.poseSize);
   d.positions = readFloatArray(folder / kPositions, {rows, V, 3});
   d.offsets = readFloatArray(folder / kOffsets, {rows, V, 3});
+  const core::NpyHeader splitHeader = core::readNpyHeader(folder / kSplit);  // checked before the data is read
+  PIXELCLOTH_CHECK(splitHeader.shape == std::vector<std::int64_t>{rows}, (folder / kSplit).string()
+                                                                             << ": shape " << splitHeader.shapeString()
+                                                                             << ", expected (" << rows << ",)");
   const core::NpyArray split = core::readNpy(folder / kSplit);
   split.checkDtype("|u1");
-  PIXELCLOTH_CHECK(split.shape == std::vector<std::int64_t>{rows},
-                   (folder / kSplit).string() << ": shape " << split.shapeString() << ", expected (" << rows << ",)");
   d.split.assign(split.bytes.begin(), split.bytes.end());
   for (std::int64_t r = 0; r < rows; ++r) {
     const Eigen::VectorXf pose = d.poses.row(r).transpose();  // poses is column-major: one row at a time

@@ -108,6 +108,21 @@ TEST(Markers, BadInputIsAnInputErrorNamingTheFileAndMarker) {
   const std::string nanError = inputErrorOf([&] { pcg::readMarkers(dir / "nan.json"); });
   EXPECT_NE(nanError.find("nan.json"), std::string::npos) << nanError;
   EXPECT_NE(nanError.find("markers[2]"), std::string::npos) << nanError;
+  // A pose file (or any other of ours) given as markers: its format says so.
+  nlohmann::json pose = json;
+  pose["format"] = "pixelcloth.pose";
+  writeText(dir / "pose.json", pose.dump());
+  const std::string formatError = inputErrorOf([&] { pcg::readMarkers(dir / "pose.json"); });
+  EXPECT_NE(formatError.find("pose.json: format 'pixelcloth.pose', expected 'pixelcloth.markers'"), std::string::npos)
+      << formatError;
+  writeText(dir / "array.json", "[1, 2, 3]");
+  EXPECT_NE(inputErrorOf([&] { pcg::readMarkers(dir / "array.json"); }).find("expected a JSON object"),
+            std::string::npos);
+  // Without a format (written by hand) it is read.
+  nlohmann::json bare = json;
+  bare.erase("format");
+  writeText(dir / "bare.json", bare.dump());
+  EXPECT_EQ(pcg::readMarkers(dir / "bare.json").markers.size(), set.markers.size());
 
   // Unknown curve, vertex off its curve, wrong garment, node at the wrong vertex.
   auto semanticError = [&](const std::function<void(nlohmann::json&)>& edit) {

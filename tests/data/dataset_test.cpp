@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <thread>
 
@@ -70,6 +71,10 @@ struct Fixture {
     s.offsets = pg::offsetsFromPositions(frames, s.positions.cast<double>()).cast<float>();
     s.stats.iterations = 10 + index;
     s.stats.extraRounds = index % 3 == 0 ? 1 : 0;
+    if (index % 2 == 0) {  // as the Newton solver measures them (odd samples: not measured, as by the other solver)
+      s.stats.maxResidualForce = 1e-6 * index;
+      s.stats.residualForceRatio = 0.001 * index;
+    }
     s.stats.maxPenetration = 0.0001 * index;
     s.stats.minAreaRatio = 0.9 - 0.001 * index;
     s.stats.maxAreaRatio = 1.1 + 0.001 * index;
@@ -194,9 +199,11 @@ TEST(DatasetWriter, WritesADatasetThatOpensAndChecks) {
   EXPECT_NEAR(d.info.stats.maxPenetration, 0.0011, 1e-12);
   EXPECT_EQ(d.info.stats.maxIterations, 21);
   EXPECT_EQ(d.info.stats.acceptedAfterExtra, 4);  // samples 0, 3, 6 and 9
+  EXPECT_NEAR(d.info.stats.maxResidualForceRatio, 0.010, 1e-12);  // sample 10
   const nlohmann::json manifest = d.info.manifest;
   EXPECT_EQ(manifest["format_version"], pd::kDatasetFormatVersion);
   EXPECT_NEAR(manifest["stats"]["max_penetration_mm"].get<double>(), 1.1, 1e-9);
+  EXPECT_NEAR(manifest["stats"]["max_residual_force_ratio"].get<double>(), 0.010, 1e-12);
   EXPECT_EQ(manifest["source"], "simulated");
   EXPECT_EQ(manifest["settings"]["steps"], 3);
 
@@ -486,6 +493,13 @@ TEST_F(DatasetCheck, CatchesAManifestThatDisagrees) {
   nlohmann::json manifest = pc::readJson(folder / "manifest.json");
   manifest["vertex_count"] = 100;
   pc::writeJson(folder / "manifest.json", manifest);
+  // The manifest disagrees with itself first: its declared arrays.
+  const std::string declared = inputErrorOf([&] { pd::checkDataset(folder); });
+  EXPECT_NE(declared.find("arrays: positions: shape"), std::string::npos) << declared;
+  EXPECT_NE(declared.find("make it [6, 100, 3]"), std::string::npos) << declared;
+  // Without them (a hand-made manifest), the arrays themselves disagree.
+  manifest.erase("arrays");
+  pc::writeJson(folder / "manifest.json", manifest);
   const std::string message = inputErrorOf([&] { pd::checkDataset(folder); });
   EXPECT_NE(message.find("positions.npy"), std::string::npos) << message;
   EXPECT_NE(message.find("100 vertices"), std::string::npos) << message;
@@ -493,6 +507,30 @@ TEST_F(DatasetCheck, CatchesAManifestThatDisagrees) {
   EXPECT_NE(inputErrorOf([&] { pd::checkDataset(folder); }).find("poses.npy: missing"), std::string::npos);
   EXPECT_NE(inputErrorOf([&] { pd::checkDataset(folder / "nowhere"); }).find("no such dataset folder"),
             std::string::npos);
+}
+
+TEST_F(DatasetCheck, CatchesAnotherFormatAndWrongDeclaredShapes) {
+  const fs::path folder = copy("declared");
+  const nlohmann::json good = pc::readJson(folder / "manifest.json");
+  auto refusal = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json manifest = good;
+    edit(manifest);
+    pc::writeJson(folder / "manifest.json", manifest);
+    return inputErrorOf([&] { pd::checkDataset(folder); });
+  };
+  EXPECT_NE(refusal([](nlohmann::json& m) {
+              m["format"] = "pixelcloth.model";
+            }).find("format 'pixelcloth.model', expected 'pixelcloth.dataset'"),
+            std::string::npos);
+  EXPECT_NE(refusal([](nlohmann::json& m) { m["format"] = 7; }).find("format"), std::string::npos);
+  const std::string shape = refusal([](nlohmann::json& m) { m["arrays"]["offsets"]["shape"] = {6, 3}; });
+  EXPECT_NE(shape.find("arrays: offsets: shape [6,3]"), std::string::npos) << shape;
+  const std::string file = refusal([](nlohmann::json& m) { m["arrays"]["split"]["file"] = "../split.npy"; });
+  EXPECT_NE(file.find("arrays: split: file '../split.npy', expected 'split.npy'"), std::string::npos) << file;
+  EXPECT_NE(refusal([](nlohmann::json& m) { m["arrays"].erase("poses"); }).find("poses"), std::string::npos);
+  // The manifest as written passes.
+  pc::writeJson(folder / "manifest.json", good);
+  EXPECT_EQ(pd::checkDataset(folder).rows, 6);
 }
 
 TEST_F(DatasetCheck, PythonsZlibAgreesWithTheChecksums) {

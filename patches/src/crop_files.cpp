@@ -16,6 +16,22 @@ fs::path cropPath(const fs::path& folder, int patch) {
   std::snprintf(name, sizeof(name), "patch_%02d.exr", patch);
   return folder / name;
 }
+/// The crop's own mask says which pixels it covers: a crop of another garment's patch (or of another patch) leaves
+/// pixels of this one empty.
+void checkCropMask(const Eigen::MatrixXf& mask, const EnlargedCrop& crop, const fs::path& path, int patch,
+                   const std::string& garment) {
+  const Eigen::MatrixXf expected = crop.raster.maskImage();
+  int uncovered = 0, inside = 0;
+  for (Eigen::Index i = 0; i < expected.size(); ++i)
+    if (expected(i) >= 2) {
+      ++inside;
+      if (!(mask(i) >= 1)) ++uncovered;
+    }
+  PIXELCLOTH_CHECK(uncovered == 0, path.string() << ": its mask leaves " << uncovered << " of the " << inside
+                                                 << " pixels of patch " << patch << " of the " << garment
+                                                 << " empty: a crop of another garment or patch?");
+}
+
 }  // namespace
 
 std::vector<EnlargedCrop> garmentCrops(const garment::Garment& garment) {
@@ -60,6 +76,7 @@ std::vector<PatchCropValues> readPatchCrops(const fs::path& folder, const garmen
                                    << " layer(s), expected one " << crop.frame.width << " x " << crop.frame.height
                                    << " crop (channels du dv dn, as images --crops writes)");
     const ClothLayer& layer = image.layers.front();
+    checkCropMask(layer.mask, crop, path, patch.id, garment.name);
     Eigen::MatrixXf pixels(static_cast<Eigen::Index>(image.width) * image.height, 3);
     pixels << fromImage(layer.du), fromImage(layer.dv), fromImage(layer.dn);
     const Eigen::MatrixXf sampled = crop.sample.apply(pixels);
@@ -73,6 +90,11 @@ std::vector<PatchCropValues> readPatchCrops(const fs::path& folder, const garmen
                                                             "the patch");
     out.push_back(std::move(p));
   }
+  // More crops than patches: crops of a garment with more of them.
+  const fs::path extra = cropPath(folder, static_cast<int>(all.size()));
+  PIXELCLOTH_CHECK(!fs::exists(extra), extra.string() << ": the " << garment.name << " has " << all.size()
+                                                      << " patches (patch_00.exr to patch_" << (all.size() - 1)
+                                                      << ".exr); these crops are of another garment");
   return out;
 }
 

@@ -5,13 +5,17 @@
 #include <set>
 
 #include "pixelcloth/garment/garment.h"
+#include "pixelcloth/patches/crop_files.h"
 #include "pixelcloth/patches/frame.h"
 #include "pixelcloth/patches/patch.h"
 #include "support/fixtures.h"
+#include "support/test_util.h"
 
 namespace pp = pixelcloth::patches;
 namespace pc = pixelcloth::core;
 namespace pg = pixelcloth::garment;
+
+using pixelcloth::testing::inputErrorOf;
 
 namespace {
 const pixelcloth::garment::Garment& shirt() { return pixelcloth::testing::tshirt(); }
@@ -106,4 +110,34 @@ TEST(GarmentPatches, IdsRunInRowsTopToBottomLeftToRight) {
       }
     }
   }
+}
+
+// Crop folders (`images --crops`, read by `stitch --patches`): they come back as written, and crops of another
+// garment or of another patch are refused by their masks and their count, naming the file.
+TEST(PatchCropFiles, ComeBackAsWrittenAndCropsOfAnotherGarmentAreRefused) {
+  const pg::Garment& g = shirt();
+  const auto dir = pixelcloth::testing::freshDir("crop_files");
+  const Eigen::MatrixXf offsets = pixelcloth::testing::smoothOffsets(g);
+  pp::writePatchCrops(dir / "shirt", pp::garmentCrops(g), offsets);
+  const std::vector<pp::PatchCropValues> back = pp::readPatchCrops(dir / "shirt", g);
+  ASSERT_EQ(back.size(), 28u);
+  for (const pp::PatchCropValues& crop : back)
+    for (size_t i = 0; i < crop.vertices.size(); ++i)
+      EXPECT_LT((crop.values.row(static_cast<Eigen::Index>(i)) - offsets.row(crop.vertices[i])).norm(), 2e-3);
+
+  // The T-shirt's 28 crops as the necktie's 5.
+  const pg::Garment tie = pg::makeNecktie();
+  const std::string asTie = inputErrorOf([&] { pp::readPatchCrops(dir / "shirt", tie); });
+  EXPECT_NE(asTie.find("another garment"), std::string::npos) << asTie;
+  EXPECT_NE(asTie.find("shirt/patch_0"), std::string::npos) << asTie;
+  // One patch's crop in another's place.
+  std::filesystem::copy_file(dir / "shirt" / "patch_03.exr", dir / "shirt" / "patch_02.exr",
+                             std::filesystem::copy_options::overwrite_existing);
+  const std::string swapped = inputErrorOf([&] { pp::readPatchCrops(dir / "shirt", g); });
+  EXPECT_NE(swapped.find("patch_02.exr: its mask leaves"), std::string::npos) << swapped;
+  // An extra crop past the garment's last patch.
+  pp::writePatchCrops(dir / "tie", pp::garmentCrops(tie), pixelcloth::testing::smoothOffsets(tie));
+  std::filesystem::copy_file(dir / "tie" / "patch_00.exr", dir / "tie" / "patch_05.exr");
+  const std::string extra = inputErrorOf([&] { pp::readPatchCrops(dir / "tie", tie); });
+  EXPECT_NE(extra.find("patch_05.exr: the necktie has 5 patches"), std::string::npos) << extra;
 }

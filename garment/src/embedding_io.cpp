@@ -21,9 +21,13 @@ void saveEmbedding(const fs::path& folder, const Embedding& embedding) {
 
 Embedding loadEmbedding(const fs::path& folder, int numBodyFaces) {
   const fs::path trianglePath = folder / "embedding_triangle.npy";
+  // The header is checked before the data is read.
+  const NpyHeader header = readNpyHeader(trianglePath);
+  PIXELCLOTH_CHECK(header.shape.size() == 1, trianglePath.string()
+                                                 << ": shape " << header.shapeString() << ", expected (#C,)");
+  PIXELCLOTH_CHECK(header.dtype == "<i4",
+                   trianglePath.string() << ": dtype " << header.dtype << ", expected <i4 (body triangle indices)");
   const NpyArray triangles = readNpy(trianglePath);
-  PIXELCLOTH_CHECK(triangles.shape.size() == 1, trianglePath.string()
-                                                    << ": shape " << triangles.shapeString() << ", expected (#C,)");
   const std::int32_t* values = triangles.data<std::int32_t>();
   const std::int64_t n = triangles.shape[0];
   Embedding embedding;

@@ -42,19 +42,21 @@ void checkFrames(const MarkerTrajectories& t) {
 
 MarkerTrajectories readNpyTrajectories(const fs::path& path, int markers, const std::string& markersName) {
   const std::string file = path.string();
-  const core::NpyArray array = core::readNpy(path);
-  const std::vector<std::int64_t>& shape = array.shape;
+  // Shape and dtype from the header, before the data is read.
+  const core::NpyHeader header = core::readNpyHeader(path);
+  const std::vector<std::int64_t>& shape = header.shape;
   const bool threeD = shape.size() == 3 && shape[1] == markers && shape[2] == 3;
   const bool twoD = shape.size() == 2 && shape[1] == 3 * static_cast<std::int64_t>(markers);
-  PIXELCLOTH_CHECK(threeD || twoD, file << ": shape " << array.shapeString() << ", expected (frames, " << markers
+  PIXELCLOTH_CHECK(threeD || twoD, file << ": shape " << header.shapeString() << ", expected (frames, " << markers
                                         << ", 3) or (frames, " << 3 * markers << "): the " << markers << " markers of "
                                         << markersName);
   PIXELCLOTH_CHECK(shape[0] > 0, file << ": no frames");
+  const bool single = header.dtype == "<f4";
+  PIXELCLOTH_CHECK(single || header.dtype == "<f8", file << ": dtype " << header.dtype << ", expected <f4 or <f8");
+  const core::NpyArray array = core::readNpy(path);
   MarkerTrajectories out;
   out.source = file;
   const std::int64_t frames = shape[0];
-  const bool single = array.dtype == "<f4";
-  PIXELCLOTH_CHECK(single || array.dtype == "<f8", file << ": dtype " << array.dtype << ", expected <f4 or <f8");
   const float* f32 = single ? array.data<float>() : nullptr;
   const double* f64 = single ? nullptr : array.data<double>();
   for (std::int64_t f = 0; f < frames; ++f) {

@@ -131,13 +131,15 @@ std::vector<ViewScene> evaluationScenes(const fs::path& folder, const std::strin
   const fs::path datasetPath = recordedPath(metrics, "dataset", metricsFile);
   const auto [dataset, body, context] = openWithBody(datasetPath);
   const int V = context.garment.mesh.numVertices();
-  const core::NpyArray predictions = core::readNpy(folder / "predictions.npy");
   PIXELCLOTH_CHECK(metrics.contains("rows") && metrics["rows"].is_array(),
                    metricsFile.string() << ": no \"rows\" (the samples of predictions.npy)");
   const std::vector<int> samples = metrics["rows"].get<std::vector<int>>();
-  PIXELCLOTH_CHECK(predictions.shape == std::vector<std::int64_t>({static_cast<std::int64_t>(samples.size()), V, 3}),
-                   (folder / "predictions.npy").string() << ": shape " << core::npyShapeString(predictions.shape)
-                                                         << ", expected (" << samples.size() << ", " << V << ", 3)");
+  // Shape and dtype from the header, before the data is read.
+  const core::NpyHeader header = core::readNpyHeader(folder / "predictions.npy");
+  PIXELCLOTH_CHECK(header.shape == std::vector<std::int64_t>({static_cast<std::int64_t>(samples.size()), V, 3}),
+                   (folder / "predictions.npy").string() << ": shape " << header.shapeString() << ", expected ("
+                                                         << samples.size() << ", " << V << ", 3)");
+  const core::NpyArray predictions = core::readNpy(folder / "predictions.npy");
   const float* values = predictions.data<float>();
   std::vector<ViewScene> scenes;
   for (int k : spreadRows(static_cast<int>(samples.size()), options.maxScenes)) {

@@ -57,6 +57,9 @@ std::string unitsAdvice(double height) {
   return "";
 }
 
+/// Pose joints closer than this (metres) are refused as one point.
+constexpr double kMinJointSpacing = 0.005;
+
 }  // namespace
 
 JointPositions readJointPositions(const std::filesystem::path& path) {
@@ -86,6 +89,16 @@ JointPositions readJointPositions(const std::filesystem::path& path) {
                                                              "pose joints lower_back, spine, spine1, neck, l_shoulder, "
                                                              "l_arm, l_forearm, r_shoulder, r_arm, r_forearm)");
   }
+  // Joints on top of each other (a file of zeros, or one position pasted for all) leave bones without a direction.
+  for (size_t a = 0; a < kPoseJoints.size(); ++a)
+    for (size_t b = a + 1; b < kPoseJoints.size(); ++b) {
+      const double apart = (positions.at(kPoseJoints[a]) - positions.at(kPoseJoints[b])).norm();
+      PIXELCLOTH_CHECK(apart >= kMinJointSpacing,
+                       path.string() << ": joints '" << kPoseJoints[a] << "' and '" << kPoseJoints[b] << "' are "
+                                     << apart * 1000
+                                     << " mm apart; expected each pose joint at its own place, at least "
+                                     << kMinJointSpacing * 1000 << " mm from the others (positions in metres)");
+    }
   return positions;
 }
 

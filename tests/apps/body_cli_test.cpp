@@ -54,7 +54,8 @@ TEST_F(CliTest, BodyImportNamesMissingMesh) {
   fs::path work = dir("work");
   fs::path joints = work / "j.json";
   nlohmann::json positions = nlohmann::json::object();
-  for (const auto& name : kPoseJointNames) positions[name] = {0.0, 1.2, 0.0};
+  double height = 0.9;  // each joint at its own place: the joints file is fine, the mesh is missing
+  for (const auto& name : kPoseJointNames) positions[name] = {0.0, height += 0.05, 0.0};
   writeFile(joints, nlohmann::json{{"joints", positions}}.dump());
   fs::path out = work / "out";
   fs::path missing = work / "missing.obj";

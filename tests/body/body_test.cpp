@@ -437,4 +437,9 @@ TEST(Import, JointFileErrors) {
   expectMessage(write("unknown.json", "{\"joints\": {\"l_elbow\": [0, 1, 0]}}"), "unknown joint 'l_elbow'");
   expectMessage(write("short.json", "{\"joints\": {\"neck\": [0, 1]}}"), "[x, y, z]");
   expectMessage(write("partial.json", "{\"joints\": {\"neck\": [0, 1.5, 0]}}"), "missing joint 'lower_back'");
+  std::string allAtOne = "{\"joints\": {";
+  for (const char* name : {"lower_back", "spine", "spine1", "neck", "l_shoulder", "l_arm", "l_forearm", "r_shoulder",
+                           "r_arm", "r_forearm"})
+    allAtOne += std::string(allAtOne.back() == '{' ? "" : ", ") + "\"" + name + "\": [0, 1, 0]";
+  expectMessage(write("one_point.json", allAtOne + "}}"), "joints 'lower_back' and 'spine' are 0 mm apart");
 }

@@ -1,12 +1,12 @@
 // pixelcloth pca: the PCA filter of a dataset's train split, for evaluate/predict/stitch --stitch pca:K.
-#include "pixelcloth/stitch/pca_filter.h"
-
 #include <iomanip>
 #include <iostream>
 #include <memory>
 
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/run_folder.h"
+#include "pixelcloth/stitch/pca_filter.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -21,6 +21,8 @@ struct PcaArgs {
 void runPca(const PcaArgs& args) {
   if (args.quiet) core::setLogLevel(core::LogLevel::Warning);
   core::checkOutputFolder(args.out);
+  // A filter replaces every file of an earlier one; it refuses a folder holding any other kind of run.
+  core::checkRunFolder(args.out, {"pca.json", {}, "a PCA filter"});
   const learn::PcaMethod method = learn::pcaMethodFromName(args.method, "--method");
   const learn::TrainingData data = learn::loadTrainingData(
       datasetFolder(args.dataset), learn::offsetSpaceFromName(args.space, "--space"), args.base);

@@ -71,6 +71,12 @@ void runTrainGan(TrainArgs args, const CLI::App& verb) {
   core::checkOutputFolder(args.out);
   const learn::PredictionInputs inputs =
       learn::datasetPredictionInputs(args.patchModel, datasetFolder(args.dataset), {}, learn::Engine::OneDnn);
+  learn::checkModelFolder(args.out,
+                          {{"architecture", "gan"},
+                           {"width", gan.width},
+                           {"garment", inputs.data.garment.name},
+                           {"vertices", inputs.data.garment.mesh.numVertices()}},
+                          false, "a GAN blender");
   const stitch::GanReport report = stitch::trainGan(*inputs.model, inputs.data, gan, args.out);
   const stitch::GanEpoch& best = report.epochs[report.bestEpoch - 1];
   std::cout << std::fixed << std::setprecision(3) << "gan: epoch " << best.epoch << " of " << report.epochs.size()

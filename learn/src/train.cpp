@@ -26,6 +26,7 @@
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/progress.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/garment.h"
 #include "pixelcloth/learn/cpu.h"
@@ -455,6 +456,18 @@ void TrainOptions::validate() const {
                    "train: positions are the baselines' space (fc, fc-pca); the decoders predict local or root offsets");
 }
 
+void checkModelFolder(const fs::path& out, const nlohmann::json& settings, bool patchModel, const std::string& what) {
+  if (!patchModel) return core::checkRunFolder(out, {"model.json", settings, what});
+  core::checkRunFolder(out, {core::kPatchModelFile, {}, what});
+  std::error_code ec;
+  if (!fs::is_directory(out, ec)) return;
+  for (const fs::directory_entry& entry : fs::directory_iterator(out, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_directory(ec) && name.rfind("patch_", 0) == 0)
+      core::checkRunFolder(entry.path(), {"model.json", settings, what + "'s decoder " + name});
+  }
+}
+
 TrainReport train(const data::DatasetFolder& dataset, const fs::path& out, const TrainOptions& options) {
   const fs::path& datasetFolder = dataset.path;
   options.validate();
@@ -515,6 +528,17 @@ TrainReport train(const data::DatasetFolder& dataset, const fs::path& out, const
                                    << core::npyShapeString(summarize(spec).output) << " but the "
                                    << data.garment.name << "'s " << (job.patch >= 0 ? "patch crops" : "images")
                                    << " are " << core::npyShapeString(job.target->shape()));
+  {
+    // What decides the folder's contents; loss, epochs and rates may change between runs (checkpoints resume only
+    // under their own, stricter signature).
+    const nlohmann::json sidecar = modelSidecar(spec, data, -1, imageLossName(options.loss));
+    nlohmann::json settings;
+    for (const char* key : {"architecture", "width", "min_channels", "pca_components", "garment", "vertices",
+                            "pose_size", "markers", "space", "residual"})
+      settings[key] = sidecar[key];
+    checkModelFolder(out, settings, spec.architecture == Architecture::Patch,
+                     std::string("the ") + architectureName(spec.architecture) + " model");
+  }
   core::ensureOutputFolder(out);
 
   TrainReport report;

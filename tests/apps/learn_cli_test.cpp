@@ -136,6 +136,25 @@ TEST_F(LearnCli, PatchDecodersFromTwoRunsMakeOneModelAndResidualOnesStartAtTheBa
          "14,15,16,17,18,19,20,21,22,23,24,25,26,27", "--out", plain.string()});
   EXPECT_GT(metricsOf(plain, work_ / "plain_eval")["vertex_error_cm"].get<double>(), 0);
 
+  // The folder now holds a patch model of width 0.03125: a run of other settings, another kind of model or a GAN
+  // blender would leave it mixed, and is refused before anything is written; so is a dataset folder.
+  const std::string decoder = readFile(plain / "patch_05" / "model.json");
+  auto trainInto = [&](std::initializer_list<std::string> args) {
+    std::string command = quote(PIXELCLOTH_BINARY) + " train --epochs 1 --dataset " + quote(dataset().string());
+    for (const std::string& word : args) command += " " + quote(word);
+    return capture(command);
+  };
+  EXPECT_TRUE(refused(trainInto({"--model", "patch", "--patches", "5", "--width", "0.0625", "--out", plain.string()}),
+                      {"/model.json: the folder holds a run with width 0.03125, this one's is 0.0625"}));
+  EXPECT_TRUE(refused(trainInto({"--model", "fc", "--out", plain.string()}), {"holds a patch model", "the fc model"}));
+  EXPECT_TRUE(refused(trainInto({"--model", "gan", "--patch-model", plain.string(), "--out", plain.string()}),
+                      {"holds a patch model", "a GAN blender"}));
+  EXPECT_TRUE(refused(trainInto({"--model", "patch", "--patches", "5", "--out", dataset().string()}),
+                      {"holds a dataset (manifest.json)"}));
+  EXPECT_EQ(readFile(plain / "patch_05" / "model.json"), decoder);
+  EXPECT_FALSE(fs::exists(plain / "model.json"));
+  EXPECT_FALSE(fs::exists(dataset() / "patch_05"));
+
   // Residual mode: an untrained model predicts the base, so one epoch is already near the markers' garment.
   train({"--model", "patch", "--width", "0.03125", "--epochs", "1", "--residual", bases().string(), "--out",
          residual.string()});

@@ -114,6 +114,11 @@ TEST_F(StitchCli, AFilterOfAnotherDatasetIsRefused) {
                                      "--out", (work_ / "foreign").string()}),
                       {(filter / "pca.json").string(), "fitted on", shared().other.string()}));
   EXPECT_FALSE(fs::exists(work_ / "foreign"));
+  // A filter is not fitted into a folder of another kind of run (here the patch model's).
+  EXPECT_TRUE(refused(
+      runPixelcloth({"pca", "--dataset", shared().dataset.string(), "--out", shared().model.string(), "--quiet"}),
+      {"holds", "a PCA filter goes in a folder of its own"}));
+  EXPECT_FALSE(fs::exists(shared().model / "pca.json"));
 }
 
 TEST_F(StitchCli, GroundTruthCropsStitchBackToTheImagesFloor) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -126,5 +127,12 @@ struct TrainReport {
 /// InputError for a model that does not fit the dataset, a base folder of another dataset, or a folder holding a run
 /// with other settings.
 TrainReport train(const data::DatasetFolder& dataset, const std::filesystem::path& out, const TrainOptions& options);
+
+/// The rule for writing into a used folder (core::checkRunFolder) applied to model folders, before training: a patch
+/// model (`patchModel`) keeps its decoders in patch_NN/ subfolders, every other model (and a GAN blender) its
+/// model.json at the top, and each existing model.json must agree with `settings` (its fields, by value). Throws
+/// InputError naming what the folder holds otherwise. `what` names the model in messages ("the fc model").
+void checkModelFolder(const std::filesystem::path& out, const nlohmann::json& settings, bool patchModel,
+                      const std::string& what);
 
 }  // namespace pixelcloth::learn

@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "pixelcloth/core/error.h"
 #include "pixelcloth/core/geometry.h"
 #include "pixelcloth/core/mesh_index.h"
 #include "pixelcloth/sim/quasistatic.h"
@@ -186,5 +187,17 @@ struct ColliderState {
     return best;
   }
 };
+
+/// Moves every collider to its new vertices (same faces, so the same vertex counts, checked).
+inline void moveColliders(std::vector<ColliderState>& colliders, const std::vector<Eigen::MatrixX3d>& vertices) {
+  PIXELCLOTH_CHECK(vertices.size() == colliders.size(),
+                   "solver: " << vertices.size() << " collider placements for " << colliders.size() << " colliders");
+  for (size_t c = 0; c < vertices.size(); ++c) {
+    PIXELCLOTH_CHECK(vertices[c].rows() == colliders[c].mesh.V.rows(),
+                     "solver: collider " << c << " moved with a different vertex count");
+    colliders[c].mesh.V = vertices[c];
+    colliders[c].moved();
+  }
+}
 
 }  // namespace pixelcloth::sim::detail

@@ -305,15 +305,7 @@ void QuasistaticSolver::setColliders(std::vector<Collider> colliders, std::vecto
 }
 
 void QuasistaticSolver::moveColliders(const std::vector<Eigen::MatrixX3d>& vertices) {
-  PIXELCLOTH_CHECK(vertices.size() == impl_->colliders.size(), "solver: " << vertices.size()
-                                                                          << " collider placements for "
-                                                                          << impl_->colliders.size() << " colliders");
-  for (size_t c = 0; c < vertices.size(); ++c) {
-    PIXELCLOTH_CHECK(vertices[c].rows() == impl_->colliders[c].mesh.V.rows(),
-                     "solver: collider " << c << " moved with a different vertex count");
-    impl_->colliders[c].mesh.V = vertices[c];
-    impl_->colliders[c].moved();
-  }
+  detail::moveColliders(impl_->colliders, vertices);
 }
 
 void QuasistaticSolver::freezeContactSprings(const Eigen::MatrixX3d& x) {

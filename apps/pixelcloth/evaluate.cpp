@@ -10,6 +10,7 @@
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/image.h"
 #include "pixelcloth/core/json_io.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/viz/pictures.h"
 #include "pixelcloth/viz/previews.h"
@@ -59,6 +60,7 @@ void writeReport(const EvaluateArgs& args, const learn::PredictionInputs& inputs
 
 void runEvaluate(const EvaluateArgs& args) {
   core::checkOutputFolder(args.out);
+  core::checkRunFolder(args.out, {"metrics.json", {}, "an evaluation"});
   const learn::PredictionInputs inputs = learn::datasetPredictionInputs(
       args.model, datasetFolder(args.dataset), args.base, learn::engineFromName(args.engine, "--engine"));
   const std::vector<stitch::Stitcher> stitchers = makeStitchers(args.stitch, inputs);

@@ -13,6 +13,7 @@
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/eval/motion_prediction.h"
 #include "pixelcloth/learn/training_data.h"
@@ -55,6 +56,7 @@ void runPredictMotion(const PredictArgs& args) {
   PIXELCLOTH_CHECK(args.stitch.modes.find(',') == std::string::npos,
                    "predict --stitch " << args.stitch.modes << ": one mode (evaluate compares several)");
   core::checkOutputFolder(args.out);
+  core::checkRunFolder(args.out, {"metrics.json", {}, "a predicted motion"});
   const motion::Motion clip = motion::readMotion(args.motion, poseLimits());
   const learn::Engine engine = learn::engineFromName(args.engine, "--engine");
   const learn::PredictionInputs inputs =
@@ -84,6 +86,7 @@ void runPredict(const PredictArgs& args) {
   PIXELCLOTH_CHECK(args.markers.empty() || !args.pose.empty(),
                    "predict: --markers goes with --pose (dataset samples take their markers from the base folder)");
   core::checkOutputFolder(args.out);
+  core::checkRunFolder(args.out, {"prediction.json", {}, "a prediction"});
   const learn::Engine engine = learn::engineFromName(args.engine, "--engine");
   const learn::PredictionInputs inputs =
       args.pose.empty()

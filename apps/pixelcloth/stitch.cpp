@@ -9,6 +9,7 @@
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/embedding.h"
 #include "pixelcloth/learn/spaces.h"
@@ -48,6 +49,7 @@ std::vector<learn::NetworkPrediction> readCrops(const fs::path& folder, const ga
 void runStitch(const StitchVerbArgs& args) {
   PIXELCLOTH_CHECK(args.sample < 0 || args.pose.empty(), "stitch: give --sample or --pose, not both");
   core::checkOutputFolder(args.out);
+  core::checkRunFolder(args.out, {"stitch.json", {}, "a stitched garment"});
   const data::DatasetInfo info = data::readDatasetInfo(datasetFolder(args.dataset));
   const garment::Garment garment = data::datasetGarment(info);
   const int V = garment.mesh.numVertices();

@@ -12,16 +12,17 @@ namespace fs = std::filesystem;
 
 namespace {
 /// The descriptor files pixelcloth's verbs write at the top of their output folders, and what each one means.
-constexpr std::array<std::pair<const char*, const char*>, 10> kDescriptors = {{{"manifest.json", "a dataset"},
-                                                                               {"model.json", "a model"},
-                                                                               {"metrics.json", "an evaluation"},
-                                                                               {"pca.json", "a PCA filter"},
-                                                                               {"report.json", "a report"},
-                                                                               {"skeleton.json", "a body"},
-                                                                               {"garment.json", "a garment"},
-                                                                               {"stitch.json", "a stitched garment"},
-                                                                               {"prediction.json", "a prediction"},
-                                                                               {"motion.json", "a motion"}}};
+constexpr std::array<std::pair<const char*, const char*>, 10> kDescriptors = {
+    {{"manifest.json", "a dataset or base folder"},
+     {"model.json", "a model"},
+     {"metrics.json", "an evaluation"},
+     {"pca.json", "a PCA filter"},
+     {"report.json", "a report"},
+     {"skeleton.json", "a body"},
+     {"garment.json", "a garment"},
+     {"stitch.json", "a stitched garment"},
+     {"prediction.json", "a prediction"},
+     {"motion.json", "a motion"}}};
 }  // namespace
 
 void checkRunFolder(const fs::path& folder, const RunDescription& run) {

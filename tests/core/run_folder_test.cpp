@@ -32,7 +32,7 @@ TEST(RunFolder, AnotherKindOrOtherSettingsAreRefusedTheSameSettingsPass) {
 
   writeJson(dir / "manifest.json", {{"format", "pixelcloth.dataset"}});
   const std::string dataset = inputErrorOf([&] { checkRunFolder(dir, filter); });
-  EXPECT_NE(dataset.find("holds a dataset (manifest.json); a PCA filter goes in a folder of its own"),
+  EXPECT_NE(dataset.find("holds a dataset or base folder (manifest.json); a PCA filter goes in a folder of its own"),
             std::string::npos)
       << dataset;
   // A run without a descriptor of its own at the top (a patch model) is refused by any.

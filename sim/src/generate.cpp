@@ -54,7 +54,8 @@ nlohmann::json simulationSettings(const SimulationOptions& s) {
     const NewtonSchedule& n = s.newton;
     const EquilibriumOptions& q = n.solver;
     return {{"solver", "newton"},
-            {"method", "Newton, projected Hessian, CHOLMOD; IPC barrier contact, lagged friction; pattern rest shape"},
+            {"method", std::string("Newton, projected Hessian, CHOLMOD; IPC barrier contact, ") +
+                           (q.friction > 0 ? "lagged friction" : "frictionless") + "; pattern rest shape"},
             {"stretch_stiffness_n_per_m", q.stretchStiffness},
             {"compression_ratio", q.compressionRatio},
             {"bend_stiffness_n_m", q.bendStiffness},

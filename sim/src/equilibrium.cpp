@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "collider.h"
+#include "pattern.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/geometry.h"
 #include "pixelcloth/core/mesh.h"
@@ -516,32 +517,20 @@ EquilibriumSolver::EquilibriumSolver(const core::Mesh& cloth, const std::vector<
                                      const EquilibriumOptions& options)
     : options_(options), impl_(std::make_unique<Impl>()) {
   options_.validate();
-  PIXELCLOTH_CHECK(cloth.hasUV(), "solver: the cloth mesh needs per-corner pattern coordinates (UV) as rest shape");
   const int n = cloth.numVertices(), m = cloth.numFaces();
   Impl& s = *impl_;
   s.options = &options_;
   s.n = n;
   s.F = cloth.F;
-  s.G.resize(m);
-  s.restArea.resize(m);
-  Eigen::VectorXd vertexArea = Eigen::VectorXd::Zero(n);
-  Eigen::Matrix<double, 2, 3> edges;
-  edges << -1, 1, 0, -1, 0, 1;
+  detail::PatternTriangles pattern = detail::patternTriangles(cloth);
+  s.G = std::move(pattern.G);
+  s.restArea = std::move(pattern.area);
+  const Eigen::VectorXd& vertexArea = pattern.vertexArea;
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(45 * m + 6 * n);
   for (int f = 0; f < m; ++f) {
-    Eigen::Vector2d u[3];
-    for (int k = 0; k < 3; ++k) u[k] = cloth.UV.row(cloth.FUV(f, k)).transpose();
-    Eigen::Matrix2d Dm;
-    Dm.col(0) = u[1] - u[0];
-    Dm.col(1) = u[2] - u[0];
-    const double area = 0.5 * std::abs(Dm.determinant());
-    PIXELCLOTH_CHECK(area > 1e-12, "solver: pattern triangle " << f + 1 << " is degenerate (area " << area << " m^2)");
-    s.restArea(f) = area;
-    s.G[f] = Dm.inverse().transpose() * edges;
-    const Eigen::Matrix3d block = options_.stretchStiffness * area * s.G[f].transpose() * s.G[f];
+    const Eigen::Matrix3d block = options_.stretchStiffness * s.restArea(f) * s.G[f].transpose() * s.G[f];
     for (int a = 0; a < 3; ++a) {
-      vertexArea(cloth.F(f, a)) += area / 3.0;
       for (int b = 0; b < 3; ++b)  // every coordinate pair of the two vertices (the corrections fill them)
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j) {
@@ -550,8 +539,6 @@ EquilibriumSolver::EquilibriumSolver(const core::Mesh& cloth, const std::vector<
           }
     }
   }
-  for (int v = 0; v < n; ++v)
-    PIXELCLOTH_CHECK(vertexArea(v) > 0, "solver: cloth vertex " << v + 1 << " belongs to no triangle");
   s.mass = options_.density * vertexArea;
   s.weight = s.mass * (options_.gravity != 0 ? std::abs(options_.gravity) : 9.81);
   s.kappa = options_.barrierStiffness * vertexArea;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "collider.h"
+#include "pattern.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/geometry.h"
 #include "pixelcloth/core/mesh_index.h"
@@ -226,36 +227,20 @@ QuasistaticSolver::QuasistaticSolver(const core::Mesh& cloth, const std::vector<
                                      const QuasistaticOptions& options)
     : options_(options), impl_(std::make_unique<Impl>()) {
   options_.validate();
-  PIXELCLOTH_CHECK(cloth.hasUV(), "solver: the cloth mesh needs per-corner pattern coordinates (UV) as rest shape");
   const int n = cloth.numVertices(), m = cloth.numFaces();
   Impl& s = *impl_;
   s.F = cloth.F;
-  s.G.resize(m);
-  s.restArea.resize(m);
-  s.mass = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd vertexArea = Eigen::VectorXd::Zero(n);
+  detail::PatternTriangles pattern = detail::patternTriangles(cloth);
+  s.G = std::move(pattern.G);
+  s.restArea = std::move(pattern.area);
+  const Eigen::VectorXd& vertexArea = pattern.vertexArea;
   std::vector<Eigen::Triplet<double>> stretch;
   stretch.reserve(9 * m);
-  Eigen::Matrix<double, 2, 3> edges;
-  edges << -1, 1, 0, -1, 0, 1;
   for (int f = 0; f < m; ++f) {
-    Eigen::Vector2d u[3];
-    for (int k = 0; k < 3; ++k) u[k] = cloth.UV.row(cloth.FUV(f, k)).transpose();
-    Eigen::Matrix2d Dm;
-    Dm.col(0) = u[1] - u[0];
-    Dm.col(1) = u[2] - u[0];
-    const double area = 0.5 * std::abs(Dm.determinant());
-    PIXELCLOTH_CHECK(area > 1e-12, "solver: pattern triangle " << f << " is degenerate (area " << area << " m^2)");
-    s.restArea(f) = area;
-    s.G[f] = Dm.inverse().transpose() * edges;
-    const Eigen::Matrix3d block = options_.stretchStiffness * area * s.G[f].transpose() * s.G[f];
-    for (int a = 0; a < 3; ++a) {
-      vertexArea(cloth.F(f, a)) += area / 3.0;
+    const Eigen::Matrix3d block = options_.stretchStiffness * s.restArea(f) * s.G[f].transpose() * s.G[f];
+    for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) stretch.emplace_back(cloth.F(f, a), cloth.F(f, b), block(a, b));
-    }
   }
-  for (int v = 0; v < n; ++v)
-    PIXELCLOTH_CHECK(vertexArea(v) > 0, "solver: cloth vertex " << v + 1 << " belongs to no triangle");
   s.mass = options_.density * vertexArea;
 
   Eigen::SparseMatrix<double> K(n, n);

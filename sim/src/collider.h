@@ -188,6 +188,14 @@ struct ColliderState {
   }
 };
 
+/// Checks a cloth's per-vertex collider indices: one per vertex, each -1 (none) or a collider's.
+inline void checkVertexColliders(const std::vector<int>& vertexCollider, size_t colliders, int vertices) {
+  PIXELCLOTH_CHECK(static_cast<int>(vertexCollider.size()) == vertices,
+                   "solver: " << vertexCollider.size() << " collider indices for " << vertices << " vertices");
+  for (const int c : vertexCollider)
+    PIXELCLOTH_CHECK(c >= -1 && c < static_cast<int>(colliders), "solver: collider index " << c << " out of range");
+}
+
 /// Moves every collider to its new vertices (same faces, so the same vertex counts, checked).
 inline void moveColliders(std::vector<ColliderState>& colliders, const std::vector<Eigen::MatrixX3d>& vertices) {
   PIXELCLOTH_CHECK(vertices.size() == colliders.size(),

@@ -592,11 +592,7 @@ int EquilibriumSolver::numVertices() const { return impl_->n; }
 const Eigen::VectorXd& EquilibriumSolver::weights() const { return impl_->weight; }
 
 void EquilibriumSolver::setColliders(std::vector<Collider> colliders, std::vector<int> vertexCollider) {
-  PIXELCLOTH_CHECK(static_cast<int>(vertexCollider.size()) == numVertices(),
-                   "solver: " << vertexCollider.size() << " collider indices for " << numVertices() << " vertices");
-  for (const int c : vertexCollider)
-    PIXELCLOTH_CHECK(c >= -1 && c < static_cast<int>(colliders.size()),
-                     "solver: collider index " << c << " out of range");
+  detail::checkVertexColliders(vertexCollider, colliders.size(), numVertices());
   impl_->colliders.clear();
   impl_->grids.assign(colliders.size(), FaceGrid{});
   for (size_t c = 0; c < colliders.size(); ++c) impl_->grids[c].build(colliders[c], kGridCell);

@@ -274,11 +274,7 @@ QuasistaticSolver::QuasistaticSolver(QuasistaticSolver&&) noexcept = default;
 int QuasistaticSolver::numVertices() const { return static_cast<int>(impl_->mass.size()); }
 
 void QuasistaticSolver::setColliders(std::vector<Collider> colliders, std::vector<int> vertexCollider) {
-  PIXELCLOTH_CHECK(static_cast<int>(vertexCollider.size()) == numVertices(),
-                   "solver: " << vertexCollider.size() << " collider indices for " << numVertices() << " vertices");
-  for (const int c : vertexCollider)
-    PIXELCLOTH_CHECK(c >= -1 && c < static_cast<int>(colliders.size()),
-                     "solver: collider index " << c << " out of range");
+  detail::checkVertexColliders(vertexCollider, colliders.size(), numVertices());
   impl_->colliders.clear();
   for (Collider& collider : colliders) impl_->colliders.emplace_back(std::move(collider));
   impl_->vertexCollider = std::move(vertexCollider);

@@ -7,6 +7,7 @@
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/viz/previews.h"
 #include "verbs.h"
 
@@ -41,6 +42,7 @@ void runBody(const BodyArgs& args) {
     options.shape = args.shape;
     options.validate();
     checkOutputFolder(args.out);
+    checkRunFolder(args.out, {"skeleton.json", {}, "a body"});
     PIXELCLOTH_INFO("body: meshing the built-in mannequin (shape " << args.shape << ")");
     body = makeMannequin(options);
     description = "built-in mannequin, shape " + std::to_string(args.shape);
@@ -48,6 +50,7 @@ void runBody(const BodyArgs& args) {
     JointPositions joints = readJointPositions(args.joints);
     Mesh mesh = readMesh(args.importMesh);
     checkOutputFolder(args.out);
+    checkRunFolder(args.out, {"skeleton.json", {}, "a body"});
     PIXELCLOTH_INFO("body: importing " << args.importMesh << " (" << mesh.numVertices() << " vertices)");
     ImportOptions options;
     options.largestComponent = args.largestComponent;

@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "pixelcloth/core/atomic_file.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/garment/garment.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
@@ -17,6 +18,7 @@ struct CageArgs {
 
 void runCage(const CageArgs& args) {
   core::checkOutputFolder(args.out);
+  core::checkRunFolder(args.out, {"cage.json", {}, "a cage"});
   viz::writeCageFolder(garment::resolveGarment(args.garment, "--garment"), args.out, args.size);
 }
 }  // namespace

@@ -13,6 +13,7 @@
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/garment/garment.h"
 #include "pixelcloth/viz/pictures.h"
 #include "pixelcloth/viz/previews.h"
@@ -33,6 +34,7 @@ void runDress(const DressArgs& args) {
   using namespace pixelcloth::garment;
   using namespace pixelcloth::viz;
   checkOutputFolder(args.out);
+  pixelcloth::core::checkRunFolder(args.out, {"dressing.json", {}, "a dressing"});
   const Garment garment = resolveGarment(args.garment, "--garment");  // before the body: a bad garment fails fast
   Body body;
   if (args.body.empty()) {

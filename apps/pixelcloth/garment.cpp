@@ -11,6 +11,7 @@
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/garment/obj_import.h"
 #include "pixelcloth/patches/body_fit.h"
 #include "pixelcloth/viz/pictures.h"
@@ -78,6 +79,7 @@ void runGarment(const GarmentArgs& args, bool placementGiven) {
       placement.translate = Eigen::Vector3d(args.translate[0], args.translate[1], args.translate[2]);
     placement.validate();
     checkOutputFolder(args.out);
+    checkRunFolder(args.out, {"garment.json", {}, "a garment"});
     // Read and validated in full before anything is written.
     if (args.cage.empty()) {
       ObjImportReport report;
@@ -102,6 +104,7 @@ void runGarment(const GarmentArgs& args, bool placementGiven) {
     const std::string context = "garment " + args.kind;
     if (request.grade != 1.0) templateTraits(args.kind, context);  // an unknown name fails before the folder check
     checkOutputFolder(args.out);
+    checkRunFolder(args.out, {"garment.json", {}, "a garment"});
     garment = makeGarment(args.kind, request, context);
   }
   saveGarment(args.out, garment);

@@ -12,7 +12,7 @@ namespace fs = std::filesystem;
 
 namespace {
 /// The descriptor files pixelcloth's verbs write at the top of their output folders, and what each one means.
-constexpr std::array<std::pair<const char*, const char*>, 10> kDescriptors = {
+constexpr std::array<std::pair<const char*, const char*>, 12> kDescriptors = {
     {{"manifest.json", "a dataset or base folder"},
      {"model.json", "a model"},
      {"metrics.json", "an evaluation"},
@@ -22,7 +22,9 @@ constexpr std::array<std::pair<const char*, const char*>, 10> kDescriptors = {
      {"garment.json", "a garment"},
      {"stitch.json", "a stitched garment"},
      {"prediction.json", "a prediction"},
-     {"motion.json", "a motion"}}};
+     {"motion.json", "a motion"},
+     {"dressing.json", "a dressing"},
+     {"cage.json", "a cage"}}};
 }  // namespace
 
 void checkRunFolder(const fs::path& folder, const RunDescription& run) {

@@ -50,6 +50,25 @@ TEST_F(CliTest, BodyRefusesUnknownCorruptMode) {
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 
+// The used-folder rule (core::checkRunFolder): a body, garment, dressing or cage is not written into a folder that
+// holds another kind of run; the same kind again is fine.
+TEST_F(CliTest, WritingIntoAFolderOfAnotherKindStopsBeforeAnythingIsWritten) {
+  const fs::path work = dir("kinds"), body = work / "body", shirt = work / "shirt";
+  ASSERT_EQ(runPixelcloth({"body", "--out", body.string()}).status, 0);
+  ASSERT_EQ(runPixelcloth({"garment", "tshirt", "--out", shirt.string()}).status, 0);
+  const std::vector<std::string> bodyFiles = filesUnder(body), shirtFiles = filesUnder(shirt);
+  EXPECT_TRUE(refused(runPixelcloth({"garment", "tshirt", "--out", body.string()}),
+                      {body.string(), "holds a body (skeleton.json); a garment goes in a folder of its own"}));
+  EXPECT_TRUE(refused(runPixelcloth({"body", "--out", shirt.string()}), {"holds a garment (garment.json)"}));
+  EXPECT_TRUE(
+      refused(runPixelcloth({"dress", "--garment", "tshirt", "--out", body.string()}), {"holds a body", "a dressing"}));
+  EXPECT_TRUE(
+      refused(runPixelcloth({"cage", "--garment", "tshirt", "--out", shirt.string()}), {"holds a garment", "a cage"}));
+  EXPECT_EQ(filesUnder(body), bodyFiles);
+  EXPECT_EQ(filesUnder(shirt), shirtFiles);
+  EXPECT_EQ(runPixelcloth({"garment", "tshirt", "--out", shirt.string()}).status, 0);  // the same kind again
+}
+
 TEST_F(CliTest, BodyImportNamesMissingMesh) {
   fs::path work = dir("work");
   fs::path joints = work / "j.json";

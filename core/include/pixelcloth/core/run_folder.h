@@ -25,7 +25,8 @@ struct RunDescription {
 /// the folder holds another kind of run (another of pixelcloth's descriptor files at its top: a dataset's
 /// manifest.json, a model's model.json, an evaluation's metrics.json, a PCA filter's pca.json, a demo's report.json,
 /// a body's skeleton.json, a garment's garment.json, a stitched garment's stitch.json, a prediction's
-/// prediction.json, a motion's motion.json, or a patch model's patch_NN/model.json), or the same kind with other
+/// prediction.json, a motion's motion.json, a dressing's dressing.json, a cage's cage.json, or a patch model's
+/// patch_NN/model.json), or the same kind with other
 /// settings (`run.file` whose fields differ
 /// from `run.settings`); the message names the file and what differs. A missing or empty folder, or one holding
 /// only other files, passes.

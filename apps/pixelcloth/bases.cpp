@@ -4,6 +4,7 @@
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/viz/basis_figures.h"
 #include "verbs.h"
 
@@ -21,6 +22,7 @@ void runBases(const BasesArgs& args) {
   options.theta = args.thetaDegrees * 3.14159265358979323846 / 180.0;
   options.validate();
   core::checkOutputFolder(args.figures);
+  core::checkRunFolder(args.figures, {"", {}, "the basis figures"});
   core::ensureOutputFolder(args.figures);
   PIXELCLOTH_INFO("bases: " << options.side << " m square, " << options.cells << " x " << options.cells
                             << " cells; anisotropic theta " << args.thetaDegrees << " deg, ratio " << options.ratio);

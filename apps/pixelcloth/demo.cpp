@@ -5,6 +5,7 @@
 
 #include <memory>
 
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/viz/demo.h"
 #include "pixelcloth/viz/viewer.h"
 #include "verbs.h"
@@ -19,6 +20,7 @@ struct DemoArgs {
 
 void runDemo(const DemoArgs& args) {
   const eval::DemoPlan& plan = args.plan;
+  pixelcloth::core::checkRunFolder(args.out, {"report.json", {{"format", "pixelcloth.demo"}}, "a demo report"});
   viz::Report report(args.out);
   const std::filesystem::path out = report.folder();
   const body::Body body = viz::demoBody(report);

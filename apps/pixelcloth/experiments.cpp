@@ -4,7 +4,9 @@
 #include <iostream>
 #include <memory>
 
+#include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/viz/experiments_report.h"
 #include "verbs.h"
 
@@ -22,6 +24,8 @@ void runExperiments(const ExperimentsArgs& args) {
   plan.threads = args.threads;
   const std::filesystem::path out =
       args.out.empty() ? std::filesystem::path("experiments") / args.scale : std::filesystem::path(args.out);
+  core::checkOutputFolder(out);
+  core::checkRunFolder(out, {"", {}, "an experiments run"});
   const eval::ExperimentResults results = eval::runExperiments(plan, out, args.scale);
   viz::writeExperimentReport(results, out);
   std::cout << "experiments: " << (out / "results.md").string() << " (" << static_cast<int>(results.seconds) << " s)\n";

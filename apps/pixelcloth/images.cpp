@@ -6,6 +6,7 @@
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/npy.h"
 #include "pixelcloth/core/progress.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/garment/garment.h"
 #include "pixelcloth/patches/cloth_image.h"
@@ -42,6 +43,7 @@ void runDatasetImages(const ImagesArgs& args, const patches::ClothImageOptions& 
                                                               << ": a dataset carries its garment; leave out --garment");
   PIXELCLOTH_CHECK(args.all != !args.samples.empty(), "images: with --dataset give --samples i,j,... or --all");
   checkOutputFolder(args.out);
+  checkRunFolder(args.out, {"", {}, "cloth images"});
   const data::Dataset dataset = data::openDataset(datasetFolder(args.dataset));
   const data::DatasetSettings& settings = dataset.info.settings;
   std::vector<int> indices = args.samples;
@@ -87,7 +89,10 @@ void runImages(const ImagesArgs& args) {
   PIXELCLOTH_CHECK(!args.garment.empty(), "images: --garment is required (unless --dataset gives it)");
   PIXELCLOTH_CHECK(args.values.empty() != args.image.empty(),
                    "images: give exactly one of --values, --image and --dataset");
-  if (!args.values.empty()) checkOutputFolder(args.out);
+  if (!args.values.empty()) {
+    checkOutputFolder(args.out);
+    checkRunFolder(args.out, {"", {}, "a cloth image"});
+  }
   Garment garment = resolveGarment(args.garment, "--garment");
   ClothImager imager(garment, options);
   if (!args.values.empty()) {

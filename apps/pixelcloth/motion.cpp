@@ -8,6 +8,7 @@
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/image.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
@@ -22,6 +23,7 @@ struct MotionImportArgs {
 
 void runMotionImport(const MotionImportArgs& args) {
   core::checkOutputFolder(args.out);
+  core::checkRunFolder(args.out, {"motion.json", {}, "a motion"});
   motion::ClipOptions options;
   options.fps = args.fps;
   options.animation = args.animation;

@@ -5,6 +5,7 @@
 #include "pixelcloth/body/pose_io.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/motion/motion.h"
 #include "pixelcloth/sim/pose_sampler.h"
 #include "pixelcloth/viz/pictures.h"
@@ -31,6 +32,7 @@ void runPose(const PoseArgs& args) {
                    "pose: give one of --pose POSES.json, --motion M/ or --random N (with --seed S)");
   PIXELCLOTH_CHECK(args.random >= 0 && args.random <= 10000,
                    "pose: --random must be in [1, 10000], got " << args.random);
+  pixelcloth::core::checkRunFolder(args.out, {"", {}, "posed bodies"});
   Body body = loadBody(args.body);
   std::vector<Pose> poses;
   nlohmann::json info = {{"body", args.body}};

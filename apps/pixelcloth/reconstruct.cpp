@@ -20,6 +20,7 @@
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/measure.h"
 #include "pixelcloth/core/mesh_io.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/eval/motion_prediction.h"
 #include "pixelcloth/motion/motion.h"
@@ -199,6 +200,7 @@ void runFromMarkerSequence(const ReconstructArgs& args) {
   PIXELCLOTH_CHECK(args.stitch.modes.find(',') == std::string::npos,
                    "reconstruct --stitch " << args.stitch.modes << ": one mode");
   core::checkOutputFolder(args.out);
+  core::checkRunFolder(args.out, {"metrics.json", {}, "a reconstructed motion"});
   const recon::ReconstructionMethod method = recon::reconstructionMethodFromName(args.method, "reconstruct --method");
   const motion::Motion clip = motion::readMotion(args.motion, poseLimits());
   const cage::MarkerSet definition = cage::readMarkers(args.markers);
@@ -282,6 +284,8 @@ void runFromDataset(const ReconstructArgs& args) {
   PIXELCLOTH_CHECK(!args.out.empty(),
                    "reconstruct --dataset needs --out (the folder for metrics and meshes), or "
                    "--write-base (a base folder for the learned refinement)");
+  core::checkOutputFolder(args.out);
+  core::checkRunFolder(args.out, {"metrics.json", {}, "a reconstruction evaluation"});
   recon::DatasetReconstructionOptions options;
   if (args.split == "all")
     options.split.reset();
@@ -318,6 +322,8 @@ void runWriteBase(const ReconstructArgs& args) {
   PIXELCLOTH_CHECK(args.markersOptions.empty(), "reconstruct --write-base: " << list(args.markersOptions)
                                                                              << " belong to the markers form; the "
                                                                                 "dataset holds its body and poses");
+  core::checkOutputFolder(args.writeBase);
+  core::checkRunFolder(args.writeBase, {"manifest.json", {{"format", "pixelcloth.base"}}, "a base folder"});
   recon::BaseSetOptions options;
   options.markers.spacing = args.spacing;
   options.capture = {args.noiseCm / 100, args.dropout, args.seed};

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/viz/viewer.h"
 #include "verbs.h"
 
@@ -18,6 +19,7 @@ struct ViewArgs {
 
 void runView(const ViewArgs& args) {
   const fs::path out = args.out.empty() ? fs::path(args.folder) / "view" : fs::path(args.out);
+  core::checkRunFolder(out, {"", {}, "a viewer page"});
   viz::ViewOptions options;
   options.maxScenes = args.maxScenes;
   const viz::ViewSite site = viz::viewFolder(args.folder, options);

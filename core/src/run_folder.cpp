@@ -25,6 +25,20 @@ constexpr std::array<std::pair<const char*, const char*>, 12> kDescriptors = {
      {"motion.json", "a motion"},
      {"dressing.json", "a dressing"},
      {"cage.json", "a cage"}}};
+
+/// What `file` in `folder` holds, for the message: a manifest.json says by its format whether it is a dataset's or a
+/// base folder's; a file that cannot be read keeps the general name.
+std::string kindOf(const fs::path& folder, const char* file, const char* kind) {
+  if (std::string(file) != "manifest.json") return kind;
+  try {
+    const nlohmann::json manifest = readJson(folder / file);
+    const std::string format = manifest.is_object() ? manifest.value("format", std::string()) : std::string();
+    if (format == "pixelcloth.dataset") return "a dataset";
+    if (format == "pixelcloth.base") return "a base folder";
+  } catch (const std::exception&) {
+  }
+  return kind;
+}
 }  // namespace
 
 void checkRunFolder(const fs::path& folder, const RunDescription& run) {
@@ -32,7 +46,7 @@ void checkRunFolder(const fs::path& folder, const RunDescription& run) {
   if (!fs::is_directory(folder, ec)) return;
   for (const auto& [file, kind] : kDescriptors) {
     if (file == run.file || !fs::exists(folder / file, ec)) continue;
-    PIXELCLOTH_FAIL(folder.string() << ": holds " << kind << " (" << file << "); " << run.what
+    PIXELCLOTH_FAIL(folder.string() << ": holds " << kindOf(folder, file, kind) << " (" << file << "); " << run.what
                                     << " goes in a folder of its own: give another --out");
   }
   if (run.file != kPatchModelFile)

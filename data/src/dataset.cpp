@@ -21,6 +21,7 @@
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/npy.h"
 #include "pixelcloth/core/progress.h"
+#include "pixelcloth/core/run_folder.h"
 
 namespace pixelcloth::data {
 
@@ -412,6 +413,7 @@ DatasetWriter::DatasetWriter(const fs::path& folder, const DatasetSettings& sett
 void DatasetWriter::Impl::open(const body::Body& body, const garment::Garment& garment, const Eigen::MatrixX3d& rest,
                                const garment::Embedding& embedding) {
   core::checkOutputFolder(folder);
+  core::checkRunFolder(folder, {"manifest.json", {{"format", "pixelcloth.dataset"}}, "a dataset"});
   const std::string bodyText = "dataset body: " + settings.body.dump();
   std::error_code ec;
   const fs::path manifest = folder / kManifest, settingsFile = partial() / "settings.json";

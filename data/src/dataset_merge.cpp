@@ -1,9 +1,9 @@
 // Merging shard folders into one dataset, streamed in index order.
+#include <unistd.h>
+
 #include <algorithm>
 #include <fstream>
 #include <string>
-
-#include <unistd.h>
 
 #include "dataset_internal.h"
 #include "pixelcloth/core/atomic_file.h"
@@ -12,6 +12,7 @@
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/npy.h"
 #include "pixelcloth/core/progress.h"
+#include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/data/dataset.h"
 
 namespace pixelcloth::data {
@@ -63,6 +64,7 @@ DatasetInfo mergeDatasets(const std::vector<fs::path>& shardFolders, const fs::p
 
   // Output folder: new or empty.
   core::checkOutputFolder(out);
+  core::checkRunFolder(out, {"", {}, "a merged dataset"});
   std::error_code ec;
   if (fs::is_directory(out, ec))
     PIXELCLOTH_CHECK(fs::directory_iterator(out) == fs::directory_iterator(),

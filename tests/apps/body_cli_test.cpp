@@ -50,8 +50,8 @@ TEST_F(CliTest, BodyRefusesUnknownCorruptMode) {
   EXPECT_TRUE(filesUnder(out).empty()) << listing(filesUnder(out));
 }
 
-// The used-folder rule (core::checkRunFolder): a body, garment, dressing or cage is not written into a folder that
-// holds another kind of run; the same kind again is fine.
+// The used-folder rule (core::checkRunFolder): no verb writes into a folder that holds another kind of run; the same
+// kind again is fine.
 TEST_F(CliTest, WritingIntoAFolderOfAnotherKindStopsBeforeAnythingIsWritten) {
   const fs::path work = dir("kinds"), body = work / "body", shirt = work / "shirt";
   ASSERT_EQ(runPixelcloth({"body", "--out", body.string()}).status, 0);
@@ -64,6 +64,23 @@ TEST_F(CliTest, WritingIntoAFolderOfAnotherKindStopsBeforeAnythingIsWritten) {
       refused(runPixelcloth({"dress", "--garment", "tshirt", "--out", body.string()}), {"holds a body", "a dressing"}));
   EXPECT_TRUE(
       refused(runPixelcloth({"cage", "--garment", "tshirt", "--out", shirt.string()}), {"holds a garment", "a cage"}));
+  // Every verb that writes a folder follows the rule, the demo (which clears its subfolders) included.
+  EXPECT_TRUE(refused(runPixelcloth({"demo", "--out", body.string()}), {"holds a body", "a demo report"}));
+  EXPECT_TRUE(refused(runPixelcloth({"pose", "--body", body.string(), "--random", "2", "--out", shirt.string()}),
+                      {"holds a garment", "posed bodies"}));
+  EXPECT_TRUE(refused(runPixelcloth({"bases", "--figures", body.string()}), {"holds a body", "the basis figures"}));
+  EXPECT_TRUE(refused(runPixelcloth({"experiments", "--out", shirt.string()}), {"holds a garment", "an experiments"}));
+  EXPECT_TRUE(refused(runPixelcloth({"motion", "import", (work / "walk.bvh").string(), "--out", body.string()}),
+                      {"holds a body", "a motion"}));
+  EXPECT_TRUE(refused(runPixelcloth({"images", "--garment", "tshirt", "--values", (work / "offsets.npy").string(),
+                                     "--out", body.string()}),
+                      {"holds a body", "a cloth image"}));
+  EXPECT_TRUE(refused(runPixelcloth({"view", shirt.string(), "--out", body.string()}), {"holds a body", "a viewer"}));
+  EXPECT_TRUE(
+      refused(runPixelcloth({"reconstruct", "--dataset", (work / "data").string(), "--write-base", shirt.string()}),
+              {"holds a garment", "a base folder"}));
+  EXPECT_TRUE(
+      refused(runPixelcloth({"generate", "--count", "2", "--out", body.string()}), {"holds a body", "a dataset"}));
   EXPECT_EQ(filesUnder(body), bodyFiles);
   EXPECT_EQ(filesUnder(shirt), shirtFiles);
   EXPECT_EQ(runPixelcloth({"garment", "tshirt", "--out", shirt.string()}).status, 0);  // the same kind again

@@ -32,13 +32,36 @@ TEST(RunFolder, AnotherKindOrOtherSettingsAreRefusedTheSameSettingsPass) {
 
   writeJson(dir / "manifest.json", {{"format", "pixelcloth.dataset"}});
   const std::string dataset = inputErrorOf([&] { checkRunFolder(dir, filter); });
-  EXPECT_NE(dataset.find("holds a dataset or base folder (manifest.json); a PCA filter goes in a folder of its own"),
+  EXPECT_NE(dataset.find("holds a dataset (manifest.json); a PCA filter goes in a folder of its own"),
             std::string::npos)
       << dataset;
   // A run without a descriptor of its own at the top (a patch model) is refused by any.
   EXPECT_NE(inputErrorOf([&] {
               checkRunFolder(dir, {"", {}, "a patch model"});
             }).find("holds a dataset"),
+            std::string::npos);
+}
+
+// manifest.json describes a dataset or a base folder: the message says which by its format, and a base folder is not
+// written over a dataset.
+TEST(RunFolder, AManifestIsNamedByItsFormat) {
+  const auto dir = freshDir("run_folder_manifest");
+  const RunDescription base{"manifest.json", {{"format", "pixelcloth.base"}}, "a base folder"};
+  writeJson(dir / "manifest.json", {{"format", "pixelcloth.base"}, {"version", 1}});
+  EXPECT_NO_THROW(checkRunFolder(dir, base));
+  EXPECT_NE(inputErrorOf([&] {
+              checkRunFolder(dir, {"model.json", {}, "a model"});
+            }).find("holds a base folder (manifest.json)"),
+            std::string::npos);
+  writeJson(dir / "manifest.json", {{"format", "pixelcloth.dataset"}, {"version", 1}});
+  const std::string over = inputErrorOf([&] { checkRunFolder(dir, base); });
+  EXPECT_NE(over.find("holds a run with format \"pixelcloth.dataset\", this one's is \"pixelcloth.base\""),
+            std::string::npos)
+      << over;
+  writeJson(dir / "manifest.json", {{"format", 3}});  // unreadable format: the general name
+  EXPECT_NE(inputErrorOf([&] {
+              checkRunFolder(dir, {"model.json", {}, "a model"});
+            }).find("holds a dataset or base folder"),
             std::string::npos);
 }
 

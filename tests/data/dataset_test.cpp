@@ -374,7 +374,11 @@ TEST(DatasetMerge, ShardsMergeToTheUnshardedArrays) {
   EXPECT_TRUE(fs::is_empty(crcOut));
   for (const auto& entry : fs::directory_iterator(crcOut.parent_path()))
     EXPECT_EQ(entry.path().filename().string().find("crc.merging-"), std::string::npos) << entry.path();
-  const std::string notEmpty = inputErrorOf([&] { pd::mergeDatasets(shards, merged); });
+  // Into a folder that holds a dataset (the merge just made), or anything else: refused, naming what is there.
+  const std::string used = inputErrorOf([&] { pd::mergeDatasets(shards, merged); });
+  EXPECT_NE(used.find("holds a dataset (manifest.json)"), std::string::npos) << used;
+  std::ofstream(crcOut / "notes.txt") << "mine";
+  const std::string notEmpty = inputErrorOf([&] { pd::mergeDatasets(shards, crcOut); });
   EXPECT_NE(notEmpty.find("not empty"), std::string::npos) << notEmpty;
 }
 

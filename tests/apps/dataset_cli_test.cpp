@@ -33,11 +33,13 @@ TEST_F(CliDatasetTest, ImportInfoCheckMergeImages) {
 
   run = runPixelcloth({"dataset", "merge", "--out", (work_ / "merged").string(), data.string(), "--quiet"});
   ASSERT_EQ(run.status, 0) << run;
+  EXPECT_EQ(run.err, "") << "--quiet silences progress";
   EXPECT_EQ(readFile(work_ / "merged" / "offsets.npy"), readFile(data / "offsets.npy"));
   EXPECT_EQ(runPixelcloth({"dataset", "check", (work_ / "merged").string()}).status, 0);
 
   run = runPixelcloth({"images", "--dataset", data.string(), "--all", "--out", (work_ / "images").string(), "--quiet"});
   ASSERT_EQ(run.status, 0) << run;
+  EXPECT_EQ(run.err, "") << "--quiet silences progress";
   for (int i = 0; i < 3; ++i) {
     EXPECT_TRUE(isPng(work_ / "images" / ("cloth_00000" + std::to_string(i) + ".png")));
     const core::ExrImage exr = core::readExr(work_ / "images" / ("cloth_00000" + std::to_string(i) + ".exr"));
@@ -134,6 +136,7 @@ TEST_F(CliBodyTest, GenerateMakesACheckedNecktieDatasetAndResumes) {
   const CliRun train = runPixelcloth({"train", "--dataset", data.string(), "--model", "necktie", "--width", "0.125",
                                       "--epochs", "2", "--batch", "2", "--out", model.string(), "--quiet"});
   ASSERT_EQ(train.status, 0) << train;
+  EXPECT_EQ(train.err, "") << "--quiet silences progress";
   for (const char* name : {"model.tensors", "model.json", "log.csv", "training.png"})
     EXPECT_TRUE(fs::exists(model / name)) << name;
   EXPECT_EQ(nlohmann::json::parse(readFile(model / "model.json"))["architecture"], "necktie");

@@ -353,6 +353,22 @@ TEST(Motion, BadClipsAreRefusedNamingTheFile) {
   EXPECT_NE(unknown.find("L_UpperArm"), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("--map"), std::string::npos) << unknown;
   EXPECT_NE(errorOf("garbage.bvh", "HIERARCHY\nROOT {\n").find("garbage.bvh"), std::string::npos);
+  // What assimp's reader would throw on part way (leaking the joints it has built) is refused before it, by line.
+  const std::string cut = errorOf("cut.bvh", good.substr(0, good.size() - 40));
+  EXPECT_NE(cut.find("cut.bvh, line"), std::string::npos) << cut;
+  EXPECT_NE(cut.find("the file is truncated"), std::string::npos) << cut;
+  std::string deep = "HIERARCHY\nROOT Hips\n{\n";
+  for (int k = 0; k < 100000; ++k) deep += "JOINT j" + std::to_string(k) + " {\n";
+  EXPECT_NE(errorOf("deep.bvh", deep).find("nested more than 256 deep"), std::string::npos);
+  std::string huge = good;
+  huge.replace(huge.find("OFFSET ") + 7, 1, "123456789012345678901234");
+  EXPECT_NE(errorOf("huge.bvh", huge).find("expected an OFFSET coordinate, found '123456789012345678901234"),
+            std::string::npos)
+      << errorOf("huge.bvh", huge);
+  std::string channel = good;
+  channel.replace(channel.find("Xrotation"), 9, "Wrotation");
+  EXPECT_NE(errorOf("channel.bvh", channel).find("found 'Wrotation'"), std::string::npos);
+  EXPECT_NE(errorOf("nomotion.bvh", good.substr(0, good.find("MOTION"))).find("expected 'MOTION'"), std::string::npos);
 
   // A map file for the renamed clip works; one naming a joint the clip lacks is refused.
   const pm::Clip renamedClip = pm::readClip(dir / "renamed.bvh");

@@ -32,6 +32,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
     report.bestErrorCm = 3.0;
     pixelcloth::learn::saveCheckpoint(std::filesystem::path(out) / "checkpoint.tensors", kSignature,
                                       pixelcloth::learn::ModelAccess::network(run().model), run().adam, report);
+    pixelcloth::fuzz::writeDeepMetaSeed(std::filesystem::path(out) / "checkpoint.tensors", "checkpoint");
   }
   return 0;
 }

@@ -9,6 +9,7 @@
 #include "checkpoint.h"
 #include "fuzz_support.h"
 #include "model_impl.h"
+#include "pixelcloth/core/tensor_file.h"
 
 namespace pixelcloth::fuzz {
 
@@ -19,6 +20,14 @@ inline learn::ModelSpec fuzzSpec() {
   spec.inputSize = 4;
   spec.outputValues = 6;
   return spec;
+}
+
+/// Beside the seed `file` (a tensor file of `kind`), the same file whose header's meta holds a value nested 1000 deep:
+/// the hostile input that once overflowed the stack when the header was copied (docs/reliability.md, finding 15).
+inline void writeDeepMetaSeed(const std::filesystem::path& file, const std::string& kind) {
+  core::TensorFile tensors = core::readTensorFile(file, kind);
+  tensors.meta["nested"] = nlohmann::json::parse(deepNesting(1000));
+  core::writeTensorFile(file.parent_path() / ("deep_meta_" + file.filename().string()), tensors);
 }
 
 }  // namespace pixelcloth::fuzz

@@ -48,6 +48,10 @@ inline std::filesystem::path writeInput(const std::string& name, const std::uint
 /// one (tests/fuzz/README.md: how the corpus was made); null otherwise.
 inline const char* seedOut() { return std::getenv("PIXELCLOTH_FUZZ_SEED_OUT"); }
 
+/// A JSON array nested `levels` deep, for seeds beyond core::parseJson's bound of 64 levels (a depth bomb): the fuzzer
+/// starts from them and mutates around the depth check (docs/reliability.md, finding 15).
+inline std::string deepNesting(int levels) { return std::string(levels, '[') + std::string(levels, ']'); }
+
 /// Runs `read`, accepting the documented refusal of bad input.
 template <typename F>
 int guarded(F&& read) {

@@ -11,8 +11,11 @@ pixelcloth::learn::Model& model() {
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   torch::set_num_threads(1);
-  if (const char* out = pixelcloth::fuzz::seedOut())
-    pixelcloth::learn::saveWeights(pixelcloth::learn::ModelAccess::network(model()), std::filesystem::path(out) / "model.tensors");
+  if (const char* out = pixelcloth::fuzz::seedOut()) {
+    const std::filesystem::path seed = std::filesystem::path(out) / "model.tensors";
+    pixelcloth::learn::saveWeights(pixelcloth::learn::ModelAccess::network(model()), seed);
+    pixelcloth::fuzz::writeDeepMetaSeed(seed, "weights");
+  }
   return 0;
 }
 

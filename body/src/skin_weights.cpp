@@ -191,4 +191,22 @@ void Body::validate(const std::string& context) const {
   }
 }
 
+std::vector<std::vector<int>> meetingParts(const std::vector<BodyPart>& parts) {
+  std::vector<std::vector<int>> meets(parts.size());
+  for (size_t p = 0; p < parts.size(); ++p)
+    for (size_t q = 0; q < parts.size(); ++q) {
+      if (q == p) continue;
+      const std::vector<int>&a = parts[p].vertices, &b = parts[q].vertices;
+      // Both sorted: walk them together until a shared vertex.
+      for (size_t i = 0, j = 0; i < a.size() && j < b.size();) {
+        if (a[i] == b[j]) {
+          meets[p].push_back(static_cast<int>(q));
+          break;
+        }
+        a[i] < b[j] ? ++i : ++j;
+      }
+    }
+  return meets;
+}
+
 }  // namespace pixelcloth::body

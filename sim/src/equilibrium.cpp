@@ -187,6 +187,8 @@ class FaceGrid {
 struct Feature {
   double distance;
   Eigen::Vector3d point;
+  /// The face's corner sum: a face that two colliders share (body parts overlap) counts once.
+  Eigen::Vector3d corners;
   /// The Hessian of the distance: 0 over the face's interior, (I - n n^T - t t^T) / d over an edge of direction t,
   /// (I - n n^T) / d over a corner.
   Eigen::Matrix3d curvature;
@@ -230,16 +232,19 @@ struct EquilibriumSolver::Impl {
   std::vector<detail::ColliderState> colliders;
   std::vector<FaceGrid> grids;  ///< per collider
   std::vector<int> vertexCollider;
+  /// Contact pairs: the colliders vertex v keeps off are pairCollider[pairStart[v] .. pairStart[v + 1]), its own
+  /// first, then those its own meets (setColliders).
+  std::vector<int> pairStart, pairCollider;
   std::vector<Feature> features;  ///< scratch: the contacts of one vertex
   std::vector<int> seenFaces;     ///< scratch
-  /// Contact cache: where each vertex was last looked up, its (unsigned) distance then, and the closest point. A
-  /// vertex that has moved less than that distance minus the barrier distance since is still out of the barrier's
-  /// reach (the distance to a fixed surface changes no faster than the vertex moves).
+  /// Contact cache, per pair: where the vertex was last looked up, its (unsigned) distance then, and the closest
+  /// point. A vertex that has moved less than that distance minus the barrier distance since is still out of the
+  /// barrier's reach (the distance to a fixed surface changes no faster than the vertex moves).
   Eigen::MatrixX3d lookedAt;
   Eigen::VectorXd lookedDistance;
   std::vector<detail::Closest> closest;
-  /// Per vertex, a lower bound of its distance at the last accepted iterate: a trial move shorter than this cannot
-  /// cross the collider's surface.
+  /// Per pair, a lower bound of the distance at the last accepted iterate: a trial move shorter than this cannot
+  /// cross that collider's surface.
   Eigen::VectorXd startDistance;
 
   /// Lagged friction, per vertex: mu times the normal force (0: none), the tangent plane and the step's start point.
@@ -267,23 +272,19 @@ struct EquilibriumSolver::Impl {
     lookedDistance.setConstant(-kInfinity);  // unknown: look up on first use
   }
 
-  /// Distance of vertex v at p to its collider's surface (unsigned), from the cache when that proves the vertex out
-  /// of the barrier's reach (then only a lower bound above the barrier distance), else by an exact query.
-  double distance(int v, const Eigen::Vector3d& p) {
-    const int c = vertexCollider[v];
-    if (c < 0) return kInfinity;
-    const double moved = (p - lookedAt.row(v).transpose()).norm();
-    if (lookedDistance(v) - moved > options->barrierDistance) return lookedDistance(v) - moved;
-    closest[v] = colliders[c].global(p, closest[v].face);
-    lookedAt.row(v) = p.transpose();
-    lookedDistance(v) = std::sqrt(closest[v].squared);
-    return lookedDistance(v);
+  /// Distance of a vertex at p to the surface of pair k's collider (unsigned), from the cache when that proves the
+  /// vertex out of the barrier's reach (then only a lower bound above the barrier distance), else by an exact query.
+  double distance(int k, const Eigen::Vector3d& p) {
+    const double moved = (p - lookedAt.row(k).transpose()).norm();
+    if (lookedDistance(k) - moved > options->barrierDistance) return lookedDistance(k) - moved;
+    closest[k] = colliders[pairCollider[k]].global(p, closest[k].face);
+    lookedAt.row(k) = p.transpose();
+    lookedDistance(k) = std::sqrt(closest[k].squared);
+    return lookedDistance(k);
   }
 
-  /// The features of vertex v's collider within the barrier distance of p (into `features`).
-  void gatherFeatures(int v, const Eigen::Vector3d& p) {
-    features.clear();
-    const int c = vertexCollider[v];
+  /// Appends to `features` the faces of collider c within the barrier distance of p.
+  void gatherFeatures(int c, const Eigen::Vector3d& p) {
     const Collider& mesh = colliders[c].mesh;
     const double dhat = options->barrierDistance;
     grids[c].near(p, dhat, seenFaces, [&](int f) {
@@ -293,6 +294,9 @@ struct EquilibriumSolver::Impl {
       const Eigen::Vector3d q = bary(0) * a + bary(1) * b + bary(2) * d;
       const double distance = (p - q).norm();
       if (distance >= dhat) return;
+      const Eigen::Vector3d corners = a + b + d;
+      for (const Feature& seen : features)
+        if (seen.distance == distance && seen.corners == corners) return;
       Eigen::Matrix3d curvature = Eigen::Matrix3d::Zero();
       int zeros = 0, zero = 0;
       for (int k = 0; k < 3; ++k)
@@ -306,18 +310,17 @@ struct EquilibriumSolver::Impl {
           curvature -= t * t.transpose() / distance;
         }
       }
-      features.push_back({distance, q, curvature});
+      features.push_back({distance, q, corners, curvature});
     });
   }
 
-  /// The signed distance (negative inside, by the pseudo-normal test), exact, and its closest point.
-  double signedDistance(int v, const Eigen::Vector3d& p) {
-    const int c = vertexCollider[v];
-    if (c < 0) return kInfinity;
-    closest[v] = colliders[c].global(p, closest[v].face);
-    lookedAt.row(v) = p.transpose();
-    lookedDistance(v) = std::sqrt(closest[v].squared);
-    return closest[v].distance;
+  /// The signed distance to pair k's collider (negative inside, by the pseudo-normal test), exact, and its closest
+  /// point.
+  double signedDistance(int k, const Eigen::Vector3d& p) {
+    closest[k] = colliders[pairCollider[k]].global(p, closest[k].face);
+    lookedAt.row(k) = p.transpose();
+    lookedDistance(k) = std::sqrt(closest[k].squared);
+    return closest[k].distance;
   }
 
   /// Energy at x (gravity measured from heights `reference`, a vector of n, or from 0 when null); optionally its
@@ -336,19 +339,22 @@ struct EquilibriumSolver::Impl {
     if (!colliders.empty()) {
       for (int v = 0; v < n; ++v) {
         const Eigen::Vector3d p = x.row(v).transpose();
-        const double d = distance(v, p);
-        if (from) {
-          // A move shorter than the vertex's distance at the iterate cannot reach the surface; a longer one is
-          // tested against the collider's triangles (continuous collision detection along the segment).
-          const Eigen::Vector3d q = from->row(v).transpose();
-          if (d <= 0 || ((p - q).norm() >= startDistance(v) && colliders[vertexCollider[v]].tree().intersects(q, p)))
-            return kInfinity;
-        } else {
-          if (d <= 0) return kInfinity;
-          if (vertexCollider[v] >= 0) startDistance(v) = d;
+        features.clear();
+        for (int k = pairStart[v]; k < pairStart[v + 1]; ++k) {
+          const double d = distance(k, p);
+          if (from) {
+            // A move shorter than the vertex's distance at the iterate cannot reach the surface; a longer one is
+            // tested against the collider's triangles (continuous collision detection along the segment).
+            const Eigen::Vector3d q = from->row(v).transpose();
+            if (d <= 0 || ((p - q).norm() >= startDistance(k) && colliders[pairCollider[k]].tree().intersects(q, p)))
+              return kInfinity;
+          } else {
+            if (d <= 0) return kInfinity;
+            startDistance(k) = d;
+          }
+          if (d < dhat) gatherFeatures(pairCollider[k], p);
         }
-        if (d >= dhat) continue;
-        gatherFeatures(v, p);
+        if (features.empty()) continue;
         Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
         for (const Feature& feature : features) {
           if (feature.distance <= 0) return kInfinity;
@@ -358,7 +364,7 @@ struct EquilibriumSolver::Impl {
           if (gradient) gradient->row(v) += kappa(v) * b.first * normal.transpose();
           if (hessian) block += kappa(v) * (b.second * normal * normal.transpose() + b.first * feature.curvature);
         }
-        if (hessian && !features.empty()) {
+        if (hessian) {
           // The faces' curvature terms (b' < 0 over edges and corners) make the block indefinite: project it.
           Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
           eigen.computeDirect(block);
@@ -462,12 +468,13 @@ struct EquilibriumSolver::Impl {
     const double dhat = options->barrierDistance;
     for (int round = 0; round < 3; ++round) {
       bool moved = false;
-      for (int v = 0; v < n; ++v) {
-        const double d = signedDistance(v, x.row(v).transpose());
-        if (d >= 0.25 * dhat || d < -kDeepest) continue;
-        x.row(v) += (0.5 * dhat - d) * closest[v].normal.transpose();
-        moved = true;
-      }
+      for (int v = 0; v < n; ++v)
+        for (int k = pairStart[v]; k < pairStart[v + 1]; ++k) {
+          const double d = signedDistance(k, x.row(v).transpose());
+          if (d >= 0.25 * dhat || d < -kDeepest) continue;
+          x.row(v) += (0.5 * dhat - d) * closest[k].normal.transpose();
+          moved = true;
+        }
       if (!moved) return;
     }
   }
@@ -476,9 +483,12 @@ struct EquilibriumSolver::Impl {
   Eigen::Vector3d barrierPush(int v, const Eigen::Vector3d& p) {
     const double dhat = options->barrierDistance;
     Eigen::Vector3d push = Eigen::Vector3d::Zero();
-    const double d = distance(v, p);
-    if (d <= 0 || d >= dhat) return push;
-    gatherFeatures(v, p);
+    features.clear();
+    for (int k = pairStart[v]; k < pairStart[v + 1]; ++k) {
+      const double d = distance(k, p);
+      if (d <= 0) return push;
+      if (d < dhat) gatherFeatures(pairCollider[k], p);
+    }
     for (const Feature& feature : features)
       push -= kappa(v) * barrier(feature.distance, dhat).first * (p - feature.point) / feature.distance;
     return push;
@@ -576,10 +586,7 @@ EquilibriumSolver::EquilibriumSolver(const core::Mesh& cloth, const std::vector<
   s.pinTargets = Eigen::MatrixX3d::Zero(static_cast<int>(pinned.size()), 3);
   s.friction = options_.friction;
   s.vertexCollider.assign(n, -1);
-  s.lookedAt = Eigen::MatrixX3d::Zero(n, 3);
-  s.lookedDistance = Eigen::VectorXd::Constant(n, -kInfinity);
-  s.startDistance = Eigen::VectorXd::Zero(n);
-  s.closest.assign(n, detail::Closest{});
+  s.pairStart.assign(n + 1, 0);
   s.frictionForce = Eigen::VectorXd::Zero(n);
   s.tangent.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
   s.slideFrom = Eigen::MatrixX3d::Zero(n, 3);
@@ -591,15 +598,39 @@ EquilibriumSolver::EquilibriumSolver(EquilibriumSolver&&) noexcept = default;
 int EquilibriumSolver::numVertices() const { return impl_->n; }
 const Eigen::VectorXd& EquilibriumSolver::weights() const { return impl_->weight; }
 
-void EquilibriumSolver::setColliders(std::vector<Collider> colliders, std::vector<int> vertexCollider) {
+void EquilibriumSolver::setColliders(std::vector<Collider> colliders, std::vector<int> vertexCollider,
+                                     const std::vector<std::vector<int>>& meets) {
   detail::checkVertexColliders(vertexCollider, colliders.size(), numVertices());
-  impl_->colliders.clear();
-  impl_->grids.assign(colliders.size(), FaceGrid{});
-  for (size_t c = 0; c < colliders.size(); ++c) impl_->grids[c].build(colliders[c], kGridCell);
-  for (Collider& collider : colliders) impl_->colliders.emplace_back(std::move(collider));
-  impl_->vertexCollider = std::move(vertexCollider);
-  impl_->closest.assign(numVertices(), detail::Closest{});
-  impl_->forgetContacts();
+  const int count = static_cast<int>(colliders.size());
+  PIXELCLOTH_CHECK(meets.empty() || static_cast<int>(meets.size()) == count,
+                   "solver: " << meets.size() << " lists of colliders that meet, for " << count << " colliders");
+  for (int c = 0; c < static_cast<int>(meets.size()); ++c)
+    for (const int other : meets[c])
+      PIXELCLOTH_CHECK(other >= 0 && other < count && other != c, "solver: collider "
+                                                                      << c << " meets collider " << other
+                                                                      << ", expected another of 0.." << count - 1);
+  Impl& s = *impl_;
+  s.colliders.clear();
+  s.grids.assign(colliders.size(), FaceGrid{});
+  for (size_t c = 0; c < colliders.size(); ++c) s.grids[c].build(colliders[c], kGridCell);
+  for (Collider& collider : colliders) s.colliders.emplace_back(std::move(collider));
+  s.vertexCollider = std::move(vertexCollider);
+  s.pairStart.assign(numVertices() + 1, 0);
+  s.pairCollider.clear();
+  for (int v = 0; v < numVertices(); ++v) {
+    const int c = s.vertexCollider[v];
+    if (c >= 0) {
+      s.pairCollider.push_back(c);
+      if (!meets.empty()) s.pairCollider.insert(s.pairCollider.end(), meets[c].begin(), meets[c].end());
+    }
+    s.pairStart[v + 1] = static_cast<int>(s.pairCollider.size());
+  }
+  const int pairs = static_cast<int>(s.pairCollider.size());
+  s.lookedAt = Eigen::MatrixX3d::Zero(pairs, 3);
+  s.lookedDistance.resize(pairs);
+  s.startDistance = Eigen::VectorXd::Zero(pairs);
+  s.closest.assign(pairs, detail::Closest{});
+  s.forgetContacts();
   impl_->frictionForce.setZero();
 }
 
@@ -742,8 +773,18 @@ Eigen::VectorXd EquilibriumSolver::distances(const Eigen::MatrixX3d& x) const {
   Eigen::VectorXd d = Eigen::VectorXd::Constant(x.rows(), kInfinity);
   for (int v = 0; v < x.rows() && v < s.n; ++v) {
     const int c = s.vertexCollider[v];
-    if (c >= 0) d(v) = s.colliders[c].global(x.row(v).transpose(), s.closest[v].face).distance;
+    if (c >= 0) d(v) = s.colliders[c].global(x.row(v).transpose(), s.closest[s.pairStart[v]].face).distance;
   }
+  return d;
+}
+
+Eigen::VectorXd EquilibriumSolver::clearances(const Eigen::MatrixX3d& x) const {
+  Impl& s = *impl_;
+  Eigen::VectorXd d = Eigen::VectorXd::Constant(x.rows(), kInfinity);
+  for (int v = 0; v < x.rows() && v < s.n; ++v)
+    for (int k = s.pairStart[v]; k < s.pairStart[v + 1]; ++k)
+      d(v) = std::min(
+          d(v), std::sqrt(s.colliders[s.pairCollider[k]].global(x.row(v).transpose(), s.closest[k].face).squared));
   return d;
 }
 

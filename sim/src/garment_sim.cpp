@@ -105,9 +105,11 @@ GarmentSimulator::GarmentSimulator(const body::Body& body, const garment::Garmen
   for (const int p : dressing.part)
     PIXELCLOTH_CHECK(p >= 0 && p < static_cast<int>(body.parts.size()),
                      "simulation: dressing names body part " << p << ", the body has " << body.parts.size());
-  if (newton_)
-    newton_->setColliders(std::move(colliders), dressing.part);
-  else
+  if (newton_) {
+    // The Newton path's barrier keeps a vertex off the parts its own meets as well, so that it cannot enter a part
+    // through the opening where the next one begins.
+    newton_->setColliders(std::move(colliders), dressing.part, body::meetingParts(body.parts));
+  } else
     solver_->setColliders(std::move(colliders), dressing.part);
 
   // Pins keep their dressed offsets from the body.

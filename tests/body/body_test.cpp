@@ -306,6 +306,9 @@ TEST(CollisionParts, ThreeOverlappingPartsCoverTheBody) {
   for (int f : body.parts[2].faces) EXPECT_LT(std::abs(body.mesh.V(body.mesh.F(f, 0), 0)), 0.35);
   for (int f : body.parts[0].faces) EXPECT_GT(body.mesh.V(body.mesh.F(f, 0), 0), 0.08);
   for (int f : body.parts[1].faces) EXPECT_LT(body.mesh.V(body.mesh.F(f, 0), 0), -0.08);
+  // The torso meets both arms; the arms do not meet.
+  const std::vector<std::vector<int>> meets = pb::meetingParts(body.parts);
+  EXPECT_EQ(meets, (std::vector<std::vector<int>>{{2}, {2}, {0, 1}}));
 }
 
 // ---- import -----------------------------------------------------------------------------------------

@@ -1,10 +1,12 @@
 // The Newton equilibrium solver: forces are the energy's gradient, a hanging sheet and a sheet draped over a sphere
-// reach the force tolerance, no vertex ever enters the collider, and friction holds cloth on a slope.
+// reach the force tolerance, no vertex ever enters the collider or passes through an opening into the part that meets
+// it, and friction holds cloth on a slope.
 #include "pixelcloth/sim/equilibrium.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "pixelcloth/core/error.h"
@@ -117,6 +119,65 @@ TEST(Equilibrium, FrictionHoldsASheetOnASlopeThatItSlidesOffWithout) {
   EXPECT_LT(held, 0.002);
   const auto [free, freeReport] = slide(0.0);
   EXPECT_GT(free, 0.02);
+}
+
+// Body parts are open where they meet: the torso has a hole where the arm begins. A vertex that keeps off its own
+// part alone falls through such an opening; with the parts its own meets it rests on them. Here a floor plate with a
+// square hole (the cloth's own collider) and a plug that fills it and overlaps the plate's rim by a cell, as the
+// body's parts overlap around the shoulders.
+TEST(Equilibrium, ClothKeepsOffThePartsItsOwnMeetsAndDoesNotFallThroughAnOpening) {
+  const int cells = 16;
+  const double side = 0.4, cell = side / cells;
+  Collider plate, plug;
+  plate.V.resize((cells + 1) * (cells + 1), 3);
+  for (int i = 0; i <= cells; ++i)
+    for (int j = 0; j <= cells; ++j) plate.V.row(i * (cells + 1) + j) << j * cell - side / 2, 0, i * cell - side / 2;
+  plug.V = plate.V;
+  std::vector<Eigen::Vector3i> own, filling;
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j) {
+      const int a = i * (cells + 1) + j, b = a + 1, c = a + cells + 1, d = c + 1;
+      const auto inside = [&](int margin) {
+        return std::min({i, j, cells - 1 - i, cells - 1 - j}) >= cells / 4 - margin;
+      };
+      for (const Eigen::Vector3i& face : {Eigen::Vector3i(a, c, b), Eigen::Vector3i(b, c, d)}) {
+        if (!inside(0)) own.push_back(face);
+        if (inside(1)) filling.push_back(face);
+      }
+    }
+  const auto faces = [](const std::vector<Eigen::Vector3i>& list) {
+    Eigen::MatrixX3i F(static_cast<int>(list.size()), 3);
+    for (int f = 0; f < F.rows(); ++f) F.row(f) = list[f].transpose();
+    return F;
+  };
+  plate.F = faces(own);
+  plug.F = faces(filling);
+
+  const int n = 13;
+  const core::Mesh cloth = sheet(n, 0.3, 0.004);
+  const std::vector<int> corners = {0, n - 1, n * (n - 1), n * n - 1};
+  auto drape = [&](bool meets) {
+    EquilibriumSolver solver(cloth, corners);
+    Eigen::MatrixX3d targets(4, 3);
+    for (int k = 0; k < 4; ++k) targets.row(k) = cloth.V.row(corners[k]);
+    solver.setPinTargets(targets);
+    solver.setColliders({plate, plug}, std::vector<int>(cloth.numVertices(), 0),
+                        meets ? std::vector<std::vector<int>>{{1}, {0}} : std::vector<std::vector<int>>{});
+    Eigen::MatrixX3d x = cloth.V;
+    EquilibriumReport report;
+    for (int step = 0; step < 5 && !report.converged; ++step) {
+      solver.beginStep(x);
+      report = solver.solve(x, 200);
+    }
+    EXPECT_TRUE(report.converged) << "force ratio " << report.maxForceRatio << " after " << report.iterations;
+    return std::make_pair(x, solver.clearances(x));
+  };
+  const auto [held, clearance] = drape(true);
+  EXPECT_GT(held.col(1).minCoeff(), 0.0);  // on the plug
+  EXPECT_GT(clearance.minCoeff(), 0.0);
+  EXPECT_LT(clearance.minCoeff(), EquilibriumOptions().barrierDistance);
+  const auto [fallen, unused] = drape(false);
+  EXPECT_LT(fallen.col(1).minCoeff(), -0.002);  // through the hole
 }
 
 TEST(Equilibrium, RefusesDegeneratePatternsAndBadSettings) {

@@ -141,11 +141,11 @@ TEST(NewtonSimulation, RestDrapeAndAKeptPoseAreEquilibriaAndAnUnfinishedOneIsRej
     for (size_t f = 0; f < part.faces.size(); ++f) collider.F.row(static_cast<int>(f)) = body.mesh.F.row(part.faces[f]);
     colliders.push_back(std::move(collider));
   }
-  check.setColliders(std::move(colliders), dressing.part);
+  check.setColliders(std::move(colliders), dressing.part, body::meetingParts(body.parts));
   check.setFriction(0);
   const Eigen::MatrixX3d x = sample.positions.cast<double>();
   const Eigen::VectorXd ratio = check.forces(x).rowwise().norm().cwiseQuotient(check.weights());
-  const Eigen::VectorXd distance = check.distances(x);
+  const Eigen::VectorXd distance = check.clearances(x);
   int free = 0;
   for (int v = 0; v < x.rows(); ++v)
     if (distance(v) > 1.5 * options.newton.solver.barrierDistance) {

@@ -80,6 +80,9 @@ Eigen::MatrixXd corruptUpperArmWeights(const Skeleton& skeleton, const Eigen::Ma
 /// weights between the two (around the shoulders) belong to both.
 std::vector<BodyPart> collisionParts(const Body& body, double overlap = 0.25);
 
+/// For each part, the parts it meets (shares a body vertex with: the overlap around the shoulders), in part order.
+std::vector<std::vector<int>> meetingParts(const std::vector<BodyPart>& parts);
+
 /// Joint positions given by a user for an imported body, by joint name (metres).
 using JointPositions = std::map<std::string, Eigen::Vector3d>;
 

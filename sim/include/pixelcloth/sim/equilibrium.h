@@ -68,8 +68,12 @@ class EquilibriumSolver {
   ~EquilibriumSolver();
   EquilibriumSolver(EquilibriumSolver&&) noexcept;
 
-  /// Colliders and, per cloth vertex, the index of the one it collides with (-1: none).
-  void setColliders(std::vector<Collider> colliders, std::vector<int> vertexCollider);
+  /// Colliders and, per cloth vertex, the index of its own (-1: none). `meets[c]` (empty: none) lists the colliders
+  /// that collider c meets (body parts open where they join): a vertex of c keeps off their surfaces too, so that it
+  /// cannot pass through c's opening into the space the neighbouring part fills. Inside and outside (distances(),
+  /// the penetration test) stay measured against the vertex's own collider.
+  void setColliders(std::vector<Collider> colliders, std::vector<int> vertexCollider,
+                    const std::vector<std::vector<int>>& meets = {});
   /// Moves the colliders' vertices (same faces as before).
   void moveColliders(const std::vector<Eigen::MatrixX3d>& vertices);
   /// Targets of the pinned vertices, #pinned x 3, in the order given to the constructor.
@@ -98,6 +102,9 @@ class EquilibriumSolver {
   Eigen::VectorXd coulombExcess(const Eigen::MatrixX3d& x) const;
   /// Signed distance of each vertex to its collider (metres; negative inside; +infinity without collider), exact.
   Eigen::VectorXd distances(const Eigen::MatrixX3d& x) const;
+  /// Distance of each vertex to the nearest surface it keeps off, its own collider's or one that collider meets
+  /// (metres, unsigned; +infinity without collider): the barrier acts on a vertex closer than its distance.
+  Eigen::VectorXd clearances(const Eigen::MatrixX3d& x) const;
   /// Per triangle, current area over pattern area.
   Eigen::VectorXd areaRatios(const Eigen::MatrixX3d& x) const;
   /// Total energy (J) relative to `x`'s own gravity reference 0: stretch + bending + gravity + pins + barrier +

@@ -10,6 +10,7 @@
 
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/mesh_index.h"
+#include "pixelcloth/core/self_intersection.h"
 
 namespace pc = pixelcloth::core;
 
@@ -100,6 +101,22 @@ TEST(LumpedMass, SumsToTheAreaAndGivesEachCornerAThird) {
   EXPECT_NEAR(mass.sum(), 1.5 * 1.5, 1e-12);
   EXPECT_NEAR(mass(0), 2 * 0.125 / 3, 1e-12);  // the corner a cell's diagonal starts from touches both its triangles
   EXPECT_NEAR(mass(3), 0.125 / 3, 1e-12);
+}
+
+TEST(SelfIntersections, AFaceThroughAnotherIsFoundNeighboursAreNot) {
+  Eigen::MatrixX3d V(7, 3);
+  V << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0,       // a square of two faces
+      0.7, 0.3, -1, 0.75, 0.3, 1, 0.7, 0.35, 1;  // a triangle through the first face
+  Eigen::MatrixX3i F(3, 3);
+  F << 0, 1, 2, 0, 2, 3, 4, 5, 6;
+  EXPECT_TRUE(pc::selfIntersections(V, F.topRows(2)).empty());  // two faces sharing an edge
+  EXPECT_EQ(pc::selfIntersections(V, F), (std::vector<std::pair<int, int>>{{0, 2}}));
+  V.row(4) << 0.7, 0.3, 0.5;  // lifted clear of the square
+  EXPECT_TRUE(pc::selfIntersections(V, F).empty());
+  // Three faces on one edge: not a manifold mesh.
+  Eigen::MatrixX3i fan(3, 3);
+  fan << 0, 1, 2, 1, 0, 3, 0, 1, 4;
+  EXPECT_THROW(pc::selfIntersections(V, fan), pc::InputError);
 }
 
 TEST(MeshIndex, ClosestPointsOnTheUnitCube) {

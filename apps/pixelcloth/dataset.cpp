@@ -1,4 +1,5 @@
-// pixelcloth dataset info|check|merge|import|rebase: look at, verify, merge, import and rebase dataset folders
+// pixelcloth dataset info|check|stats|merge|import|rebase: look at, verify, picture, merge, import and rebase dataset
+// folders
 // (docs/dataset.md).
 #include "pixelcloth/data/dataset.h"
 
@@ -11,6 +12,8 @@
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/log.h"
+#include "pixelcloth/core/run_folder.h"
+#include "pixelcloth/data/face_statistics.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
@@ -49,6 +52,20 @@ void runCheck(const DatasetArgs& args) {
   options.strongSamples = args.strongSamples;
   const data::DatasetCheckReport report = data::checkDataset(args.folder, options);
   std::cout << "ok: " << args.folder << ": " << report.summary() << '\n';
+}
+
+/// The paper's appendix statistics as pictures: per face, the smallest and largest area ratio over the samples, and
+/// how often it intersects the garment itself.
+void runStats(const DatasetArgs& args) {
+  core::checkOutputFolder(args.out);
+  core::checkRunFolder(args.out, {"", {}, "a dataset's face statistics"});
+  const data::Dataset dataset = data::openDataset(datasetFolder(args.folder));
+  const data::FaceStatistics stats = data::faceStatistics(dataset);
+  viz::writeFaceStatistics(data::datasetGarment(dataset.info), stats, dataset.info.folder, args.out);
+  std::cout << "face statistics of " << stats.samples << " samples: area ratio " << stats.minAreaRatio.minCoeff()
+            << " to " << stats.maxAreaRatio.maxCoeff() << ", " << stats.samplesSelfIntersecting
+            << " samples with the garment passing through itself -> " << args.out
+            << "/{area_distortion.png, self_intersection.png, face_statistics.json}\n";
 }
 
 void runMerge(const DatasetArgs& args) {
@@ -122,8 +139,9 @@ void runRebase(const DatasetArgs& args) {
 void registerDataset(CLI::App& app) {
   auto args = std::make_shared<DatasetArgs>();
   CLI::App* verb = app.add_subcommand(
-      "dataset", "Dataset folders (manifest.json + poses/positions/offsets/split .npy): info, check, merge, import, "
-      "rebase");
+      "dataset",
+      "Dataset folders (manifest.json + poses/positions/offsets/split .npy): info, check, stats, merge, "
+      "import, rebase");
   verb->require_subcommand(1);
 
   CLI::App* info = verb->add_subcommand("info",
@@ -142,6 +160,15 @@ void registerDataset(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0, 1000000));
   check->callback([args] { runCheck(*args); });
+
+  CLI::App* stats = verb->add_subcommand(
+      "stats",
+      "The paper's appendix statistics as pictures: per garment face, the smallest and largest ratio of its area to "
+      "its pattern area over the samples (area_distortion.png) and the fraction of samples in which it passes "
+      "through the garment itself (self_intersection.png), with the numbers in face_statistics.json");
+  stats->add_option("folder", args->folder, "Dataset folder")->required();
+  stats->add_option("--out", args->out, "Output folder for the pictures")->required();
+  stats->callback([args] { runStats(*args); });
 
   CLI::App* merge = verb->add_subcommand(
       "merge", "Merge the shard folders of one dataset (pixelcloth generate --shard K/N) into one, in index order");

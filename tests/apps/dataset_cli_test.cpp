@@ -1,4 +1,4 @@
-// pixelcloth dataset and generate: import, info, check, merge, images, rebase, simulation; bad input refused.
+// pixelcloth dataset and generate: import, info, check, stats, merge, images, rebase, simulation; bad input refused.
 #include "cli_fixtures.h"
 
 namespace pixelcloth::apps {
@@ -6,7 +6,7 @@ namespace {
 
 // ---------------------------------------------------------------------------------------------------------------------
 
-TEST_F(CliDatasetTest, ImportInfoCheckMergeImages) {
+TEST_F(CliDatasetTest, ImportInfoCheckStatsMergeImages) {
   const fs::path data = work_ / "data";
   CliRun run = import(work_ / "objs", work_ / "poses.csv", data);
   ASSERT_EQ(run.status, 0) << run;
@@ -36,6 +36,21 @@ TEST_F(CliDatasetTest, ImportInfoCheckMergeImages) {
   EXPECT_EQ(run.err, "") << "--quiet silences progress";
   EXPECT_EQ(readFile(work_ / "merged" / "offsets.npy"), readFile(data / "offsets.npy"));
   EXPECT_EQ(runPixelcloth({"dataset", "check", (work_ / "merged").string()}).status, 0);
+
+  // The appendix statistics as pictures, and the numbers behind them.
+  run = runPixelcloth({"dataset", "stats", data.string(), "--out", (work_ / "stats").string(), "--quiet"});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_NE(run.out.find("face statistics of 3 samples"), std::string::npos) << run;
+  EXPECT_TRUE(isPng(work_ / "stats" / "area_distortion.png"));
+  EXPECT_TRUE(isPng(work_ / "stats" / "self_intersection.png"));
+  const nlohmann::json faces = nlohmann::json::parse(readFile(work_ / "stats" / "face_statistics.json"));
+  EXPECT_EQ(faces["samples"], 3);
+  EXPECT_EQ(faces["min_area_ratio"].size(), static_cast<size_t>(tie_.mesh.numFaces()));
+  EXPECT_TRUE(refused(runPixelcloth({"dataset", "stats", (work_ / "objs").string(), "--out", (work_ / "s2").string()}),
+                      {"manifest.json"}));
+  EXPECT_TRUE(refused(runPixelcloth({"dataset", "stats", data.string(), "--out", data.string()}),
+                      {"holds a dataset", "face statistics"}));
+  EXPECT_FALSE(fs::exists(work_ / "s2"));
 
   run = runPixelcloth({"images", "--dataset", data.string(), "--all", "--out", (work_ / "images").string(), "--quiet"});
   ASSERT_EQ(run.status, 0) << run;

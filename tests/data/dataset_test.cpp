@@ -11,9 +11,11 @@
 #include <thread>
 
 #include "pixelcloth/body/skeleton.h"
+#include "pixelcloth/core/geometry.h"
 #include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/mesh_io.h"
 #include "pixelcloth/core/npy.h"
+#include "pixelcloth/data/face_statistics.h"
 #include "support/fixtures.h"
 #include "support/test_util.h"
 
@@ -218,6 +220,51 @@ TEST(DatasetWriter, WritesADatasetThatOpensAndChecks) {
   EXPECT_EQ(embedding.triangle, s.embedding.triangle);
   EXPECT_EQ(embedding.barycentric, s.embedding.barycentric);
   EXPECT_EQ(pd::loadDatasetRestPositions(folder, s.garment.mesh.numVertices()), s.rest);
+}
+
+// The appendix statistics: per face, the extreme area ratios over the samples and how often the face passes through
+// the garment. Sample 0 is the T-shirt as made (nothing passes through), sample 1 the same with one front vertex pushed
+// through the back.
+TEST(FaceStatistics, AreaRatiosAndSelfIntersectionsPerFace) {
+  const Fixture& s = setup();
+  const fs::path folder = freshDir("face_statistics");
+  const Eigen::MatrixX3d& V = s.garment.mesh.V;
+  // A vertex in the middle of the front (largest z at the chest's height), pushed back past the back panel.
+  int pierced = -1;
+  const double chest = V.col(1).minCoeff() + 0.6 * (V.col(1).maxCoeff() - V.col(1).minCoeff());
+  for (int v = 0; v < V.rows(); ++v)
+    if (std::abs(V(v, 0)) < 0.03 && std::abs(V(v, 1) - chest) < 0.03 && (pierced < 0 || V(v, 2) > V(pierced, 2)))
+      pierced = v;
+  ASSERT_GE(pierced, 0);
+  {
+    pd::DatasetWriter writer(folder, s.settings(2), s.body, s.garment, s.rest, s.embedding);
+    for (int i = 0; i < 2; ++i) {
+      pd::Sample sample = s.sample(i);
+      sample.positions = V.cast<float>();
+      if (i == 1) sample.positions(pierced, 2) -= 0.5f;
+      writer.add(i, sample);
+    }
+    writer.finish();
+  }
+  const pd::FaceStatistics stats = pd::faceStatistics(pd::openDataset(pd::DatasetFolder{folder}));
+  const int faces = s.garment.mesh.numFaces();
+  ASSERT_EQ(stats.samples, 2);
+  ASSERT_EQ(stats.minAreaRatio.size(), faces);
+  ASSERT_EQ(stats.selfIntersection.size(), faces);
+  EXPECT_EQ(stats.samplesSelfIntersecting, 1);
+  const Eigen::VectorXd asMade = pc::areaRatios(V.cast<float>().cast<double>(), s.garment.mesh);  // as stored
+  for (int f = 0; f < faces; ++f) {
+    const bool around = (s.garment.mesh.F.row(f).array() == pierced).any();
+    if (around) EXPECT_EQ(stats.selfIntersection(f), 0.5) << "face " << f;
+    EXPECT_LE(stats.selfIntersection(f), 0.5);
+    EXPECT_NEAR(stats.minAreaRatio(f), asMade(f), 1e-5) << "face " << f;
+    if (around)
+      EXPECT_GT(stats.maxAreaRatio(f), 5 * asMade(f)) << "face " << f;  // stretched half a metre
+    else
+      EXPECT_NEAR(stats.maxAreaRatio(f), asMade(f), 1e-5) << "face " << f;
+  }
+  // The back faces it passes through count too.
+  EXPECT_GT((stats.selfIntersection.array() > 0).count(), 6);
 }
 
 TEST(DatasetWriter, RefusesBadSamples) {

@@ -1,4 +1,4 @@
-// The output folders of the cage and dress verbs (the demo's too): files, figures and their pictures.
+// The output folders of the cage, dress and dataset stats verbs (the demo's too): files, figures and their pictures.
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -93,6 +93,26 @@ void writeDressingFolder(const body::Body& body, const garment::Garment& garment
                                     {"area_ratio_after", ratioStats(dressing.areaRatioAfter)},
                                     {"vertices_per_part", parts}});
   PIXELCLOTH_INFO("dress: -> " << out.string() << "/{dressed.obj, area_distortion.png, dressed.png, dressing.json}");
+}
+
+void writeFaceStatistics(const garment::Garment& garment, const data::FaceStatistics& stats,
+                         const std::filesystem::path& source, const std::filesystem::path& out) {
+  const std::string over = " over " + std::to_string(stats.samples) + " samples";
+  writePng(out / "area_distortion.png", renderFacePanels(garment,
+                                                         {{"smallest area ratio" + over, stats.minAreaRatio},
+                                                          {"largest area ratio" + over, stats.maxAreaRatio}},
+                                                         FaceScale::AreaRatio));
+  writePng(out / "self_intersection.png",
+           renderFacePanels(garment, {{"faces through the garment itself" + over, stats.selfIntersection}},
+                            FaceScale::Fraction));
+  const auto list = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  writeJson(out / "face_statistics.json", {{"dataset", source.string()},
+                                           {"samples", stats.samples},
+                                           {"faces", garment.mesh.numFaces()},
+                                           {"samples_self_intersecting", stats.samplesSelfIntersecting},
+                                           {"min_area_ratio", list(stats.minAreaRatio)},
+                                           {"max_area_ratio", list(stats.maxAreaRatio)},
+                                           {"self_intersection_fraction", list(stats.selfIntersection)}});
 }
 
 }  // namespace pixelcloth::viz

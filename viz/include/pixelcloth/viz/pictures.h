@@ -12,6 +12,7 @@
 #include "pixelcloth/cage/cage.h"
 #include "pixelcloth/cage/dressing.h"
 #include "pixelcloth/core/image.h"
+#include "pixelcloth/data/face_statistics.h"
 #include "pixelcloth/garment/garment.h"
 #include "pixelcloth/learn/train.h"
 #include "pixelcloth/patches/cloth_image.h"
@@ -27,6 +28,23 @@ core::RgbImage renderPattern(const garment::Garment& garment, int pixelsPerMetre
 /// Picture of a cage on its mesh: front, back and three-quarter views, curves coloured by kind (loops red,
 /// centre lines blue, seams green, openings black, splits orange), nodes as dots; only parts facing the camera drawn.
 core::RgbImage renderCageOnMesh(const core::Mesh& mesh, const cage::Cage& cage, int panelSize = 420);
+
+/// How renderFacePanels colours a face's value.
+enum class FaceScale {
+  AreaRatio,  ///< an area ratio: log2 from -1 (blue, half the area or less) through 0 (white) to 1 (red, twice)
+  Fraction,   ///< a fraction: white (0) to red (the largest of the panels, at least 1%, rounded up)
+};
+
+/// One panel of renderFacePanels: a value per garment face.
+struct FacePanel {
+  std::string title;
+  Eigen::VectorXd values;
+};
+
+/// Per-face values of `garment` in pattern space, 1 to 4 panels side by side (each its layouts labelled: front, back,
+/// sleeves), each with a line of statistics, and a colour bar.
+core::RgbImage renderFacePanels(const garment::Garment& garment, const std::vector<FacePanel>& panels, FaceScale scale,
+                                int pixelsPerMetre = 800);
 
 /// Area distortion in pattern space, before and after relaxation side by side: faces coloured by
 /// log2(3D area / pattern area), red for stretch, blue for compression, white for none; with a colour bar.
@@ -76,6 +94,13 @@ void writeCageFolder(const garment::Garment& garment, const std::filesystem::pat
 /// after relaxation, vertices pushed out and their deepest penetration, vertices still inside, vertices per part).
 void writeDressingFolder(const body::Body& body, const garment::Garment& garment, const cage::Dressing& dressing,
                          const std::filesystem::path& out);
+
+/// Writes a dataset's appendix statistics (data::faceStatistics of the dataset at `source`) into `out`, each file
+/// atomically: area_distortion.png (per face, the smallest and the largest area ratio over the samples),
+/// self_intersection.png (per face, the fraction of samples in which it passes through the garment) and
+/// face_statistics.json (those numbers per face, and the samples with any self-intersection).
+void writeFaceStatistics(const garment::Garment& garment, const data::FaceStatistics& stats,
+                         const std::filesystem::path& source, const std::filesystem::path& out);
 
 /// Training curves of a learn::NetworkReport: per-vertex error (cm, log scale) on the train split (blue) and the
 /// regularisation split (orange), against the epoch (left) and against the wall time of the epochs (right), the best

@@ -18,6 +18,17 @@ namespace {
 using fixtures::sheet;
 using fixtures::sphere;
 
+/// Up to five continuation steps at the same colliders, each of at most `iterations` Newton iterations, until the
+/// force tolerance holds.
+EquilibriumReport settle(EquilibriumSolver& solver, Eigen::MatrixX3d& x, int iterations) {
+  EquilibriumReport report;
+  for (int step = 0; step < 5 && !report.converged; ++step) {
+    solver.beginStep(x);
+    report = solver.solve(x, iterations);
+  }
+  return report;
+}
+
 TEST(Equilibrium, ForcesAreMinusTheEnergyGradientWithContactAndFriction) {
   const core::Mesh cloth = sheet(7, 0.06, 0.1012);
   EquilibriumSolver solver(cloth, {0});
@@ -80,11 +91,7 @@ TEST(Equilibrium, SheetDrapedOverASphereRestsOutsideItAtTheTolerance) {
   solver.setPinTargets(cloth.V.row(centre));
   solver.setColliders({sphere(0.1, 32, 64)}, std::vector<int>(cloth.numVertices(), 0));
   Eigen::MatrixX3d x = cloth.V;
-  EquilibriumReport report;
-  for (int step = 0; step < 5 && !report.converged; ++step) {
-    solver.beginStep(x);
-    report = solver.solve(x, 100);
-  }
+  const EquilibriumReport report = settle(solver, x, 100);
   EXPECT_TRUE(report.converged) << "force ratio " << report.maxForceRatio << " after " << report.iterations;
   const Eigen::VectorXd d = solver.distances(x);
   EXPECT_GT(d.minCoeff(), 0);
@@ -164,11 +171,7 @@ TEST(Equilibrium, ClothKeepsOffThePartsItsOwnMeetsAndDoesNotFallThroughAnOpening
     solver.setColliders({plate, plug}, std::vector<int>(cloth.numVertices(), 0),
                         meets ? std::vector<std::vector<int>>{{1}, {0}} : std::vector<std::vector<int>>{});
     Eigen::MatrixX3d x = cloth.V;
-    EquilibriumReport report;
-    for (int step = 0; step < 5 && !report.converged; ++step) {
-      solver.beginStep(x);
-      report = solver.solve(x, 200);
-    }
+    const EquilibriumReport report = settle(solver, x, 200);
     EXPECT_TRUE(report.converged) << "force ratio " << report.maxForceRatio << " after " << report.iterations;
     return std::make_pair(x, solver.clearances(x));
   };

@@ -511,6 +511,44 @@ TEST(Sequence, TheAnimatedGlbReadsBackThroughAssimp) {
   }
 }
 
+// glTF clips are checked before assimp, whose glTF readers read past the end of a damaged file (docs/reliability.md,
+// finding 17): the GLB of the test above, truncated or with another length in its header, and text that is not a
+// glTF file's JSON, are refused naming the file.
+TEST(Sequence, DamagedGltfAndGlbClipsAreRefusedBeforeAssimpReadsThem) {
+  const fs::path dir = pixelcloth::testing::freshDir("bad_gltf");
+  const pb::Body& body = pixelcloth::testing::coarseMannequin();
+  pm::AnimatedScene scene;
+  scene.body = &body;
+  scene.fps = 24;
+  scene.rootTranslations = Eigen::MatrixX3d::Zero(2, 3);
+  for (int f = 0; f < 2; ++f) {
+    scene.poses.push_back(pb::randomPose(3 + f, 0.5));
+    scene.rootRotations.push_back(axisRotation(1, 10.0 * f));
+  }
+  pm::writeAnimatedGlb(dir / "scene.glb", scene);
+  EXPECT_NO_THROW(pm::readClip(dir / "scene.glb"));
+  const std::string glb = pixelcloth::core::readTextFile(dir / "scene.glb");
+  const auto errorOf = [&](const std::string& name, const std::string& bytes) {
+    pixelcloth::core::writeTextAtomically(dir / name, bytes);
+    return inputErrorOf([&] { pm::readClip(dir / name); });
+  };
+  const std::string cut = errorOf("cut.glb", glb.substr(0, glb.size() / 2));
+  EXPECT_NE(cut.find("cut.glb: the binary glTF header says"), std::string::npos) << cut;
+  std::string longer = glb;
+  longer[8] = static_cast<char>(longer[8] + 4);  // the header's total length
+  EXPECT_NE(errorOf("longer.glb", longer).find("truncated or damaged"), std::string::npos);
+  std::string json = glb;
+  json[12] = static_cast<char>(0xff);  // the JSON chunk's length, far past the end
+  json[13] = static_cast<char>(0xff);
+  json[14] = static_cast<char>(0xff);
+  EXPECT_NE(errorOf("chunk.glb", json).find("runs past the end"), std::string::npos);
+  EXPECT_NE(errorOf("words.gltf", "{\"scenes\": []}").find("not a glTF file"), std::string::npos);
+  // What the clip fuzz target found: 17 bytes that made assimp's glTF reader run past its buffer.
+  const std::string found =
+      inputErrorOf([&] { pm::readClip(pixelcloth::testing::asset("fuzz_clip_gltf_overflow.gltf")); });
+  EXPECT_NE(found.find("fuzz_clip_gltf_overflow.gltf"), std::string::npos) << found;
+}
+
 TEST(Sequence, PlainMeshesGlbKeepsFramesColoursAndNamesForAssimp) {
   // Two meshes: a square of two triangles over three frames with vertex colours and an application colour set, and
   // a still triangle.

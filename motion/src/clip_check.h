@@ -1,6 +1,8 @@
 #pragma once
-// A structural check of BVH files before assimp reads them. Private to motion/.
+// Structural checks of motion clips before assimp reads them: its BVH reader leaks and its glTF readers read past
+// the end of damaged files (docs/reliability.md, findings 16 and 17). Private to motion/.
 
+#include <filesystem>
 #include <string>
 
 namespace pixelcloth::motion::detail {
@@ -15,5 +17,11 @@ bool looksLikeBvh(const std::string& text);
 /// expected otherwise. assimp's reader throws part way through such a file and leaks the nodes it has built (and
 /// recurses once per level of nesting), so nothing that fails here reaches it.
 void checkBvh(const std::string& text, const std::string& file);
+
+/// Checks a glTF clip before assimp reads it: a .gltf file must be a JSON object with an "asset" object (read by
+/// core::readJson: size and depth bounded); a .glb file (or one starting with the magic "glTF") must have a binary
+/// glTF header whose length is the file's, and a first chunk of JSON (the same test) within it. Throws InputError
+/// naming the file otherwise; returns quietly for other files.
+void checkGltf(const std::filesystem::path& path, const std::string& extension);
 
 }  // namespace pixelcloth::motion::detail

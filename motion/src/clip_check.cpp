@@ -1,11 +1,15 @@
-#include "bvh_check.h"
+#include "clip_check.h"
 
 #include <array>
 #include <cctype>
 #include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <string_view>
+#include <vector>
 
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/json_io.h"
 
 namespace pixelcloth::motion::detail {
 
@@ -193,6 +197,66 @@ void checkBvh(const std::string& text, const std::string& file) {
                                            << f + 1 << ", channel " << c + 1 << " is " << Words::quoted(word)
                                            << (word.empty() ? " (the file is truncated)" : ""));
     }
+}
+
+namespace {
+void checkGltfJson(const nlohmann::json& json, const std::string& file) {
+  PIXELCLOTH_CHECK(json.is_object() && json.contains("asset") && json["asset"].is_object(),
+                   file << ": not a glTF file (expected a JSON object with an \"asset\" object)");
+}
+
+std::uint32_t littleEndian32(const char* bytes) {
+  std::uint32_t value = 0;
+  for (int k = 3; k >= 0; --k) value = (value << 8) | static_cast<unsigned char>(bytes[k]);
+  return value;
+}
+}  // namespace
+
+void checkGltf(const std::filesystem::path& path, const std::string& extension) {
+  const std::string file = path.string();
+  std::ifstream in(path, std::ios::binary);
+  PIXELCLOTH_CHECK(in, file << ": cannot open for reading");
+  char header[20] = {};
+  in.read(header, sizeof(header));
+  const std::streamsize got = in.gcount();
+  const bool binary = got >= 4 && std::memcmp(header, "glTF", 4) == 0;
+  if (extension == ".gltf" && !binary) return checkGltfJson(core::readJson(path), file);
+  if (extension != ".glb" && !binary) return;
+  // Binary glTF: magic, version, total length; version 2: chunks (length, type) with the JSON first; version 1
+  // (KHR_binary_glTF): content length and format 0 (JSON), the content after the 20-byte header.
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  PIXELCLOTH_CHECK(!ec && got >= 12 && binary, file << ": not a binary glTF file (expected the magic 'glTF' and a "
+                                                       "12-byte header)");
+  const std::uint32_t version = littleEndian32(header + 4), length = littleEndian32(header + 8);
+  PIXELCLOTH_CHECK(version == 1 || version == 2, file << ": binary glTF version " << version << ", expected 1 or 2");
+  PIXELCLOTH_CHECK(length == size, file << ": the binary glTF header says " << length << " bytes, the file has " << size
+                                        << " (truncated or damaged)");
+  PIXELCLOTH_CHECK(got == 20, file << ": a binary glTF file of " << size << " bytes has no content");
+  const std::uint32_t content = littleEndian32(header + 12), kind = littleEndian32(header + 16);
+  const std::uint32_t kJson = 0x4E4F534A;  // "JSON"
+  PIXELCLOTH_CHECK(version == 2 ? kind == kJson : kind == 0,
+                   file << ": the first chunk of a binary glTF file must be its JSON");
+  PIXELCLOTH_CHECK(content > 0 && content <= size - 20, file << ": the JSON chunk of " << content
+                                                             << " bytes runs past the end of the " << size
+                                                             << "-byte file");
+  std::string json(content, '\0');
+  in.read(json.data(), static_cast<std::streamsize>(content));
+  PIXELCLOTH_CHECK(in.gcount() == static_cast<std::streamsize>(content), file << ": cannot read its JSON chunk");
+  checkGltfJson(core::parseJson(json, file + " (its JSON chunk)"), file);
+  // Version 2: the chunks after the JSON (a BIN chunk) each within the file.
+  if (version != 2) return;
+  std::uintmax_t at = 20 + static_cast<std::uintmax_t>(content);
+  while (at < size) {
+    char chunk[8];
+    PIXELCLOTH_CHECK(size - at >= 8 && in.read(chunk, 8),
+                     file << ": a chunk header at byte " << at << " runs past the end of the file");
+    const std::uint32_t bytes = littleEndian32(chunk);
+    PIXELCLOTH_CHECK(bytes <= size - at - 8, file << ": the chunk at byte " << at << " says " << bytes
+                                                  << " bytes, past the end of the " << size << "-byte file");
+    in.seekg(static_cast<std::streamoff>(bytes), std::ios::cur);
+    at += 8 + bytes;
+  }
 }
 
 }  // namespace pixelcloth::motion::detail

@@ -62,6 +62,12 @@ void checkRunFolder(const fs::path& folder, const RunDescription& run) {
   const nlohmann::json there = readJson(path);
   PIXELCLOTH_CHECK(there.is_object(), path.string() << ": expected a JSON object");
   for (const auto& [key, value] : run.settings.items()) {
+    // Another format in the same descriptor file (a dataset's manifest.json where a base folder's would go): another
+    // kind of run.
+    PIXELCLOTH_CHECK(key != "format" || (there.contains(key) && there[key] == value),
+                     folder.string() << ": holds " << kindOf(folder, run.file.c_str(), "another kind of run") << " ("
+                                     << run.file << "); " << run.what
+                                     << " goes in a folder of its own: give another --out");
     PIXELCLOTH_CHECK(there.contains(key) && there[key] == value,
                      path.string() << ": the folder holds a run with " << key << " "
                                    << (there.contains(key) ? there[key].dump() : std::string("unset"))

@@ -150,14 +150,14 @@ TEST_F(LearnCli, PatchDecodersFromTwoRunsMakeOneModelAndResidualOnesStartAtTheBa
   EXPECT_TRUE(refused(trainInto({"--model", "gan", "--patch-model", plain.string(), "--out", plain.string()}),
                       {"holds a patch model", "a GAN blender"}));
   EXPECT_TRUE(refused(trainInto({"--model", "patch", "--patches", "5", "--out", dataset().string()}),
-                      {"holds a dataset or base folder (manifest.json)"}));
+                      {"holds a dataset (manifest.json)"}));
   // The same rule keeps an evaluation or a prediction out of them.
   EXPECT_TRUE(refused(
       runPixelcloth({"evaluate", "--model", plain.string(), "--dataset", dataset().string(), "--out", plain.string()}),
       {"holds a patch model", "an evaluation goes in a folder of its own"}));
   EXPECT_TRUE(refused(runPixelcloth({"predict", "--model", plain.string(), "--dataset", dataset().string(), "--samples",
                                      "7", "--out", dataset().string()}),
-                      {"holds a dataset or base folder (manifest.json); a prediction"}));
+                      {"holds a dataset (manifest.json); a prediction"}));
   EXPECT_EQ(readFile(plain / "patch_05" / "model.json"), decoder);
   EXPECT_FALSE(fs::exists(plain / "model.json"));
   EXPECT_FALSE(fs::exists(dataset() / "patch_05"));

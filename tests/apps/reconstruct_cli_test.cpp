@@ -126,7 +126,7 @@ TEST_F(CliReconstructTest, WriteBaseRefusesOptionsThatMeanNothingThere) {
                       {"--write-base", "--dataset"}));
   EXPECT_TRUE(refused(runPixelcloth({"reconstruct", "--dataset", data_.string()}), {"--out", "--write-base"}));
   EXPECT_TRUE(refused(runPixelcloth({"reconstruct", "--dataset", data_.string(), "--write-base", data_.string()}),
-                      {"dataset folder"}));
+                      {"holds a dataset (manifest.json); a base folder goes in a folder of its own"}));
   EXPECT_TRUE(filesUnder(out).empty());
   EXPECT_FALSE(fs::exists(work_ / "rec"));
   EXPECT_EQ(runPixelcloth({"dataset", "check", data_.string()}).status, 0);

@@ -55,8 +55,7 @@ TEST(RunFolder, AManifestIsNamedByItsFormat) {
             std::string::npos);
   writeJson(dir / "manifest.json", {{"format", "pixelcloth.dataset"}, {"version", 1}});
   const std::string over = inputErrorOf([&] { checkRunFolder(dir, base); });
-  EXPECT_NE(over.find("holds a run with format \"pixelcloth.dataset\", this one's is \"pixelcloth.base\""),
-            std::string::npos)
+  EXPECT_NE(over.find("holds a dataset (manifest.json); a base folder goes in a folder of its own"), std::string::npos)
       << over;
   writeJson(dir / "manifest.json", {{"format", 3}});  // unreadable format: the general name
   EXPECT_NE(inputErrorOf([&] {

@@ -6,13 +6,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <assimp/Importer.hpp>
-#include <cctype>
 #include <cmath>
-#include <fstream>
 #include <map>
 
 #include "clip_check.h"
-#include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 
 namespace pixelcloth::motion {
@@ -107,18 +104,7 @@ Clip readClip(const fs::path& path, const ClipOptions& options) {
                                                           "Collada file)");
   PIXELCLOTH_CHECK(options.fps == 0 || (std::isfinite(options.fps) && options.fps >= 1 && options.fps <= 1000),
                    file << ": sampling at " << options.fps << " frames per second, expected 1 to 1000");
-  {
-    // A BVH file (by its extension or its first word) is checked whole first: assimp's reader leaks what it has
-    // built when it throws part way through one. A glTF file likewise: its readers read past a damaged one's end.
-    std::string extension = path.extension().string();
-    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    std::string head(4096, '\0');
-    std::ifstream in(path, std::ios::binary);
-    in.read(head.data(), static_cast<std::streamsize>(head.size()));
-    head.resize(static_cast<size_t>(in.gcount()));
-    if (extension == ".bvh" || detail::looksLikeBvh(head)) detail::checkBvh(core::readTextFile(path), file);
-    detail::checkGltf(path, extension);
-  }
+  detail::checkBeforeAssimp(path);
   Assimp::Importer importer;
   // FBX pivots folded into the nodes' own transforms, so every joint is one node of the hierarchy.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
 #include "pixelcloth/core/json_io.h"
 
@@ -257,6 +258,17 @@ void checkGltf(const std::filesystem::path& path, const std::string& extension) 
     in.seekg(static_cast<std::streamoff>(bytes), std::ios::cur);
     at += 8 + bytes;
   }
+}
+
+void checkBeforeAssimp(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::string head(4096, '\0');
+  std::ifstream in(path, std::ios::binary);
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  if (extension == ".bvh" || looksLikeBvh(head)) return checkBvh(core::readTextFile(path), path.string());
+  checkGltf(path, extension);
 }
 
 }  // namespace pixelcloth::motion::detail

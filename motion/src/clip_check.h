@@ -24,4 +24,8 @@ void checkBvh(const std::string& text, const std::string& file);
 /// naming the file otherwise; returns quietly for other files.
 void checkGltf(const std::filesystem::path& path, const std::string& extension);
 
+/// What readClip runs before assimp: checkBvh on a BVH file (by its extension or its first word), checkGltf on a glTF
+/// or GLB one (by its extension or its magic); other files pass.
+void checkBeforeAssimp(const std::filesystem::path& path);
+
 }  // namespace pixelcloth::motion::detail

@@ -265,6 +265,10 @@ struct EquilibriumSolver::Impl {
   /// Per pair, a lower bound of the distance at the last accepted iterate: a trial move shorter than this cannot
   /// cross that collider's surface.
   Eigen::VectorXd startDistance;
+  /// Per pair other than a vertex's own: set for the step when the vertex starts it inside that collider (the body
+  /// carried it there: an arm pressed into the chest leaves no room outside both), which then neither pushes it
+  /// nor stops it; its own collider always does.
+  std::vector<char> dormant;
 
   /// Lagged friction, per vertex: mu times the normal force (0: none), the tangent plane and the step's start point.
   Eigen::VectorXd frictionForce;
@@ -360,6 +364,7 @@ struct EquilibriumSolver::Impl {
         const Eigen::Vector3d p = x.row(v).transpose();
         features.clear();
         for (int k = pairStart[v]; k < pairStart[v + 1]; ++k) {
+          if (dormant[k]) continue;
           const double d = distance(k, p);
           if (from) {
             // A move shorter than the vertex's distance at the iterate cannot reach the surface; a longer one is
@@ -483,13 +488,19 @@ struct EquilibriumSolver::Impl {
   /// kDeepest, out along its contact normal to half the barrier distance. Deeper vertices are left where they are
   /// (the barrier then keeps them off the surface from inside, and the sample's penetration test judges them): body
   /// parts are open where they meet, and "inside" an arm beyond its opening at the shoulder is not inside the body.
+  /// A vertex inside a collider other than its own is left there, and that collider dormant for it.
   void pushOut(Eigen::MatrixX3d& x) {
     const double dhat = options->barrierDistance;
     for (int round = 0; round < 3; ++round) {
       bool moved = false;
       for (int v = 0; v < n; ++v)
         for (int k = pairStart[v]; k < pairStart[v + 1]; ++k) {
+          if (dormant[k]) continue;
           const double d = signedDistance(k, x.row(v).transpose());
+          if (k > pairStart[v] && d < 0) {
+            dormant[k] = 1;
+            continue;
+          }
           if (d >= 0.25 * dhat || d < -kDeepest) continue;
           x.row(v) += (0.5 * dhat - d) * closest[k].normal.transpose();
           moved = true;
@@ -504,6 +515,7 @@ struct EquilibriumSolver::Impl {
     Eigen::Vector3d push = Eigen::Vector3d::Zero();
     features.clear();
     for (int k = pairStart[v]; k < pairStart[v + 1]; ++k) {
+      if (dormant[k]) continue;
       const double d = distance(k, p);
       if (d <= 0) return push;
       if (d < dhat) gatherFeatures(pairCollider[k], p);
@@ -649,6 +661,7 @@ void EquilibriumSolver::setColliders(std::vector<Collider> colliders, std::vecto
   s.lookedDistance.resize(pairs);
   s.startDistance = Eigen::VectorXd::Zero(pairs);
   s.closest.assign(pairs, detail::Closest{});
+  s.dormant.assign(pairs, 0);
   s.forgetContacts();
   impl_->frictionForce.setZero();
 }
@@ -674,6 +687,7 @@ void EquilibriumSolver::setFriction(double friction) {
 void EquilibriumSolver::beginStep(Eigen::MatrixX3d& x) {
   PIXELCLOTH_CHECK(x.rows() == numVertices(),
                    "solver: " << x.rows() << " positions for " << numVertices() << " cloth vertices");
+  std::fill(impl_->dormant.begin(), impl_->dormant.end(), 0);
   impl_->pushOut(x);
   impl_->slideFrom = x;
   impl_->lagFriction(x);
@@ -798,13 +812,31 @@ Eigen::VectorXd EquilibriumSolver::distances(const Eigen::MatrixX3d& x) const {
   return d;
 }
 
+void EquilibriumSolver::closestPoints(const Eigen::MatrixX3d& x, Eigen::VectorXi& face,
+                                      Eigen::MatrixX3d& barycentric) const {
+  PIXELCLOTH_CHECK(x.rows() == numVertices(),
+                   "solver: " << x.rows() << " positions for " << numVertices() << " cloth vertices");
+  Impl& s = *impl_;
+  face = Eigen::VectorXi::Constant(s.n, -1);
+  barycentric = Eigen::MatrixX3d::Zero(s.n, 3);
+  for (int v = 0; v < s.n; ++v) {
+    const int c = s.vertexCollider[v];
+    if (c < 0) continue;
+    // No hint: where two faces are equally close the tree's own choice, the same whatever was solved before.
+    const detail::Closest closest = s.colliders[c].global(x.row(v).transpose());
+    face(v) = closest.face;
+    barycentric.row(v) = closest.bary.transpose();
+  }
+}
+
 Eigen::VectorXd EquilibriumSolver::clearances(const Eigen::MatrixX3d& x) const {
   Impl& s = *impl_;
   Eigen::VectorXd d = Eigen::VectorXd::Constant(x.rows(), kInfinity);
   for (int v = 0; v < x.rows() && v < s.n; ++v)
     for (int k = s.pairStart[v]; k < s.pairStart[v + 1]; ++k)
-      d(v) = std::min(
-          d(v), std::sqrt(s.colliders[s.pairCollider[k]].global(x.row(v).transpose(), s.closest[k].face).squared));
+      if (!s.dormant[k])
+        d(v) = std::min(
+            d(v), std::sqrt(s.colliders[s.pairCollider[k]].global(x.row(v).transpose(), s.closest[k].face).squared));
   return d;
 }
 

@@ -224,11 +224,26 @@ void GarmentSimulator::recordForce(data::SampleStats& stats, const Eigen::Matrix
 
 void GarmentSimulator::rideAlong(Eigen::MatrixX3d& x, const body::Pose& pose) {
   // The cloth rides with the body to the next pose (constant offsets in the embedded frames), so the solver only
-  // relaxes what skinning gets wrong instead of having the arms drag the sleeves through contact.
+  // relaxes what skinning gets wrong instead of having the arms drag the sleeves through contact. The Newton path
+  // embeds each vertex afresh at the closest point of its own body part: a vertex that slid centimetres from where
+  // it was dressed would otherwise swing with a frame there, and skinning bends the skin around the shoulder enough
+  // between the two to carry it through its part's surface.
+  garment::Embedding embedding = dressing_.embedding;
+  if (newton_) {
+    Eigen::VectorXi face;
+    Eigen::MatrixX3d barycentric;
+    newton_->closestPoints(x, face, barycentric);
+    for (int v = 0; v < x.rows(); ++v) {
+      if (face(v) < 0) continue;
+      embedding.triangle(v) = body_.parts[dressing_.part[v]].faces[face(v)];
+      embedding.barycentric.row(v) = barycentric.row(v);
+      embedding.tangentCoords.row(v) = Eigen::RowVector2d(1, 0);  // along the face's first edge: any will do
+    }
+  }
   const Eigen::MatrixX3d offsets =
-      garment::offsetsFromPositions(garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), x);
+      garment::offsetsFromPositions(garment::embeddedFrames(posedBody_, body_.mesh.F, embedding), x);
   placeBody(pose);
-  x = garment::positionsFromOffsets(garment::embeddedFrames(posedBody_, body_.mesh.F, dressing_.embedding), offsets);
+  x = garment::positionsFromOffsets(garment::embeddedFrames(posedBody_, body_.mesh.F, embedding), offsets);
 }
 
 data::Sample GarmentSimulator::simulate(const body::Pose& pose) {

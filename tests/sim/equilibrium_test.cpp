@@ -183,6 +183,64 @@ TEST(Equilibrium, ClothKeepsOffThePartsItsOwnMeetsAndDoesNotFallThroughAnOpening
   EXPECT_LT(fallen.col(1).minCoeff(), -0.002);  // through the hole
 }
 
+TEST(Equilibrium, ClothTheBodyCarriedIntoAPartItsOwnMeetsIsLeftThereAndNotHeld) {
+  // A sheet pinned at its corners, its middle inside a ball that its own collider (a ball far below) meets, as cloth
+  // is when skinning presses an arm into the chest: the ball neither pushes the middle out nor holds it in, so the
+  // sheet sags as if the ball were not there; a ball that does not hold the sheet's middle still keeps it off.
+  const int n = 13;
+  const core::Mesh cloth = sheet(n, 0.3, 0);
+  const std::vector<int> corners = {0, n - 1, n * (n - 1), n * n - 1};
+  Collider below = sphere(0.05), ball = sphere(0.03);
+  below.V.col(1).array() -= 1.0;
+  auto drape = [&](std::vector<Collider> colliders, const std::vector<std::vector<int>>& meets, bool& movedAtStart) {
+    EquilibriumSolver solver(cloth, corners);
+    Eigen::MatrixX3d targets(4, 3);
+    for (int k = 0; k < 4; ++k) targets.row(k) = cloth.V.row(corners[k]);
+    solver.setPinTargets(targets);
+    solver.setColliders(std::move(colliders), std::vector<int>(cloth.numVertices(), 0), meets);
+    Eigen::MatrixX3d x = cloth.V;
+    solver.beginStep(x);
+    movedAtStart = !x.isApprox(cloth.V);
+    const EquilibriumReport report = solver.solve(x, 200);
+    EXPECT_TRUE(report.converged) << "force ratio " << report.maxForceRatio << " after " << report.iterations;
+    return x;
+  };
+  bool moved = true;
+  const Eigen::MatrixX3d through = drape({below, ball}, {{1}, {0}}, moved);
+  EXPECT_FALSE(moved);
+  const Eigen::MatrixX3d alone = drape({below}, {}, moved);
+  EXPECT_LT((through - alone).rowwise().norm().maxCoeff(), 1e-6);
+  EXPECT_LT(alone(n * n / 2, 1), -0.03);  // the middle sagged out through the ball's bottom
+  // Started above the ball, the sheet rests on it.
+  Collider high = ball;
+  high.V.col(1).array() -= 0.045;
+  const Eigen::MatrixX3d held = drape({below, high}, {{1}, {0}}, moved);
+  EXPECT_GT(held(n * n / 2, 1), -0.016);
+}
+
+TEST(Equilibrium, ClosestPointsLieOnEachVertexsOwnCollider) {
+  const core::Mesh cloth = sheet(5, 0.2, 0.12);
+  EquilibriumSolver solver(cloth, {});
+  const Collider ball = sphere(0.1);
+  std::vector<int> own(cloth.numVertices(), 0);
+  own[3] = -1;
+  solver.setColliders({ball}, own);
+  Eigen::VectorXi face;
+  Eigen::MatrixX3d barycentric;
+  solver.closestPoints(cloth.V, face, barycentric);
+  const Eigen::VectorXd d = solver.distances(cloth.V);
+  EXPECT_EQ(face(3), -1);
+  for (int v = 0; v < cloth.numVertices(); ++v) {
+    if (v == 3) continue;
+    ASSERT_GE(face(v), 0);
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) point += barycentric(v, k) * ball.V.row(ball.F(face(v), k)).transpose();
+    EXPECT_NEAR((cloth.V.row(v).transpose() - point).norm(), d(v), 1e-12) << "vertex " << v;
+    EXPECT_NEAR(barycentric.row(v).sum(), 1.0, 1e-12);
+    EXPECT_GE(barycentric.row(v).minCoeff(), 0.0);
+  }
+}
+
 TEST(Equilibrium, RefusesDegeneratePatternsAndBadSettings) {
   core::Mesh cloth = sheet(3, 0.1, 0);
   EquilibriumOptions options;

@@ -102,6 +102,9 @@ class EquilibriumSolver {
   Eigen::VectorXd coulombExcess(const Eigen::MatrixX3d& x) const;
   /// Signed distance of each vertex to its collider (metres; negative inside; +infinity without collider), exact.
   Eigen::VectorXd distances(const Eigen::MatrixX3d& x) const;
+  /// Per vertex, the closest point of its own collider: the collider's face (-1 without collider) and the point's
+  /// barycentric coordinates in it (#V x 3).
+  void closestPoints(const Eigen::MatrixX3d& x, Eigen::VectorXi& face, Eigen::MatrixX3d& barycentric) const;
   /// Distance of each vertex to the nearest surface it keeps off, its own collider's or one that collider meets
   /// (metres, unsigned; +infinity without collider): the barrier acts on a vertex closer than its distance.
   Eigen::VectorXd clearances(const Eigen::MatrixX3d& x) const;

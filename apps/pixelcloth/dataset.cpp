@@ -14,6 +14,7 @@
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/data/face_statistics.h"
+#include "pixelcloth/sim/shape_comparison.h"
 #include "pixelcloth/viz/pictures.h"
 #include "verbs.h"
 
@@ -23,6 +24,8 @@ namespace {
 
 struct DatasetArgs {
   std::string folder;
+  std::string other;
+  int imageSize = 512;
   bool json = false;
   int strongSamples = 3;
   std::string out;
@@ -66,6 +69,35 @@ void runStats(const DatasetArgs& args) {
             << " to " << stats.maxAreaRatio.maxCoeff() << ", " << stats.samplesSelfIntersecting
             << " samples with the garment passing through itself -> " << args.out
             << "/{area_distortion.png, self_intersection.png, face_statistics.json}\n";
+}
+
+void runCompare(const DatasetArgs& args) {
+  const data::Dataset a = data::openDataset(datasetFolder(args.folder));
+  const data::Dataset b = data::openDataset(datasetFolder(args.other));
+  const sim::ShapeComparison c = sim::compareDatasets(a, b, args.imageSize);
+  if (args.json) {
+    nlohmann::ordered_json out{{"a", args.folder},
+                               {"b", args.other},
+                               {"rows_a", c.rowsA},
+                               {"rows_b", c.rowsB},
+                               {"posed_alike", c.rows.size()},
+                               {"mean_distance_cm", 100 * c.meanDistance()},
+                               {"max_distance_cm", 100 * c.maxDistance()},
+                               {"samples", nlohmann::json::array()}};
+    for (size_t k = 0; k < c.rows.size(); ++k)
+      out["samples"].push_back({{"row_a", c.rows[k].first},
+                                {"row_b", c.rows[k].second},
+                                {"mean_distance_cm", 100 * c.mean[k]},
+                                {"max_distance_cm", 100 * c.max[k]}});
+    std::cout << out.dump(2) << '\n';
+    return;
+  }
+  PIXELCLOTH_CHECK(!c.rows.empty(), "dataset compare: no sample of " << args.other << " (" << c.rowsB
+                                                                     << ") has the pose of one of " << args.folder
+                                                                     << " (" << c.rowsA << "): nothing to compare");
+  std::cout << c.rows.size() << " samples posed alike (of " << c.rowsA << " and " << c.rowsB << "): mean distance "
+            << 100 * c.meanDistance() << " cm (mean over the samples of the mean over the "
+            << "vertices, through the pattern), largest " << 100 * c.maxDistance() << " cm\n";
 }
 
 void runMerge(const DatasetArgs& args) {
@@ -140,7 +172,7 @@ void registerDataset(CLI::App& app) {
   auto args = std::make_shared<DatasetArgs>();
   CLI::App* verb = app.add_subcommand(
       "dataset",
-      "Dataset folders (manifest.json + poses/positions/offsets/split .npy): info, check, stats, merge, "
+      "Dataset folders (manifest.json + poses/positions/offsets/split .npy): info, check, stats, compare, merge, "
       "import, rebase");
   verb->require_subcommand(1);
 
@@ -169,6 +201,20 @@ void registerDataset(CLI::App& app) {
   stats->add_option("folder", args->folder, "Dataset folder")->required();
   stats->add_option("--out", args->out, "Output folder for the pictures")->required();
   stats->callback([args] { runStats(*args); });
+
+  CLI::App* compare = verb->add_subcommand(
+      "compare",
+      "How far apart two datasets' samples of the same poses are: per pose both hold (identical pose vectors), the "
+      "distance between the two shapes at each point of the sewing pattern (vertex to vertex on one mesh; through "
+      "cloth images on two meshes of a pattern), mean and largest, in cm: meshes of different resolution, or two "
+      "continuation paths (generate --step-degrees)");
+  compare->add_option("folder", args->folder, "First dataset folder")->required();
+  compare->add_option("other", args->other, "Second dataset folder")->required();
+  compare->add_option("--image-size", args->imageSize, "Cloth image size for meshes of different resolution")
+      ->capture_default_str()
+      ->check(CLI::Range(64, 4096));
+  compare->add_flag("--json", args->json, "Print every pair as JSON");
+  compare->callback([args] { runCompare(*args); });
 
   CLI::App* merge = verb->add_subcommand(
       "merge", "Merge the shard folders of one dataset (pixelcloth generate --shard K/N) into one, in index order");

@@ -49,6 +49,11 @@ void registerGenerate(CLI::App& app) {
                    "Quasistatic solver: 'pd' (projective dynamics, fixed schedule) or 'newton' (run to static "
                    "equilibrium, verified by the net force on every vertex; about 40x slower)")
       ->capture_default_str();
+  verb->add_option("--step-degrees", o.simulation.stepDegrees,
+                   "Continuation: the body moves from the rest pose to each sampled pose in steps of at most this "
+                   "many degrees of any joint's rotation, the cloth solved at each")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 180.0));
   verb->add_option("--threads", o.threads, "Worker threads (0: one per core)")->capture_default_str();
   verb->add_flag("--quiet", args->quiet, "No progress on stderr");
   verb->callback([args] { runGenerate(*args); });

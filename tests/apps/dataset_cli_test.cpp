@@ -36,6 +36,15 @@ TEST_F(CliDatasetTest, ImportInfoCheckStatsMergeImages) {
   EXPECT_EQ(run.err, "") << "--quiet silences progress";
   EXPECT_EQ(readFile(work_ / "merged" / "offsets.npy"), readFile(data / "offsets.npy"));
   EXPECT_EQ(runPixelcloth({"dataset", "check", (work_ / "merged").string()}).status, 0);
+  // The same poses in both: every sample matched, at no distance.
+  run = runPixelcloth({"dataset", "compare", data.string(), (work_ / "merged").string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_NE(run.out.find("3 samples posed alike (of 3 and 3): mean distance 0 cm"), std::string::npos) << run;
+  run = runPixelcloth({"dataset", "compare", "--json", data.string(), (work_ / "merged").string()});
+  ASSERT_EQ(run.status, 0) << run;
+  EXPECT_EQ(nlohmann::json::parse(run.out)["samples"].size(), 3u);
+  EXPECT_TRUE(
+      refused(runPixelcloth({"dataset", "compare", data.string(), (work_ / "objs").string()}), {"manifest.json"}));
 
   // The appendix statistics as pictures, and the numbers behind them.
   run = runPixelcloth({"dataset", "stats", data.string(), "--out", (work_ / "stats").string(), "--quiet"});

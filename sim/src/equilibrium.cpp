@@ -224,16 +224,26 @@ namespace {
 /// CHOLMOD 5's supernodal factorisation opens OpenMP teams of a fixed 4 threads (CHOLMOD_OMP_NUM_THREADS, whatever
 /// OMP_NUM_THREADS says); on 2 cores they wait on each other (the 1000-vertex T-shirt's Newton test: 16.4 s, against
 /// 6.5 s with at most 2 threads). Dynamic adjustment, a setting of the calling thread only, lets the OpenMP runtime
-/// give such a team no more threads than there are idle cores, for the duration of a solve.
+/// give such a team no more threads than there are idle cores, for the duration of a solve. The dense blocks go to
+/// the BLAS (OpenBLAS, OpenMP build), whose threaded Cholesky hands its parts to a team and waits for all of them to
+/// run at once: a team cut short by the dynamic adjustment (one thread when the machine is busy) leaves it spinning
+/// for good. So the BLAS is held to one thread for the solve too (OpenBLAS sizes its teams by the calling thread's
+/// omp_get_max_threads()); the simulation's own threads are what use the cores.
 class DynamicTeams {
  public:
-  DynamicTeams() : before_(omp_get_dynamic()) { omp_set_dynamic(1); }
-  ~DynamicTeams() { omp_set_dynamic(before_); }
+  DynamicTeams() : dynamic_(omp_get_dynamic()), threads_(omp_get_max_threads()) {
+    omp_set_dynamic(1);
+    omp_set_num_threads(1);
+  }
+  ~DynamicTeams() {
+    omp_set_num_threads(threads_);
+    omp_set_dynamic(dynamic_);
+  }
   DynamicTeams(const DynamicTeams&) = delete;
   DynamicTeams& operator=(const DynamicTeams&) = delete;
 
  private:
-  int before_;
+  int dynamic_, threads_;
 };
 }  // namespace
 

@@ -20,19 +20,26 @@ void registerBench(CLI::App& app) {
                    "Shirts simulated for learn.epoch_seconds_w025, 80% of them trained on (fewer for a quick check)")
       ->capture_default_str()
       ->check(CLI::Range(10, 100000));
+  verb->add_option("--probe-poses", options->probePoses,
+                   "Poses the equilibrium probe simulates on each mesh and continuation path")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 10000));
   auto only = std::make_shared<std::string>("all");
   verb->add_option("--only", *only,
                    "Which figures: all, procedural (body to simulation and files), learn, stitch (the PCA filter), "
-                   "motion (a clip to an animated garment) or equilibrium (the Newton solver, a few minutes)")
+                   "motion (a clip to an animated garment), equilibrium (the Newton solver, a few minutes) or "
+                   "equilibrium_probe (the Newton solver on unseen poses, four meshes and two continuation paths: "
+                   "tens of minutes; not part of all)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"all", "procedural", "learn", "stitch", "motion", "equilibrium"}));
+      ->check(CLI::IsMember({"all", "procedural", "learn", "stitch", "motion", "equilibrium", "equilibrium_probe"}));
   verb->callback([options, only] {
     const bench::FigureSink print = [](const nlohmann::ordered_json& figure) {
       std::cout << figure.dump() << std::endl;
     };
     for (bench::Suite suite : {bench::Suite::Procedural, bench::Suite::Learn, bench::Suite::Stitch,
-                               bench::Suite::Motion, bench::Suite::Equilibrium})
-      if (*only == "all" || *only == bench::suiteName(suite)) bench::runSuite(suite, *options, print);
+                               bench::Suite::Motion, bench::Suite::Equilibrium, bench::Suite::EquilibriumProbe})
+      if ((*only == "all" && suite != bench::Suite::EquilibriumProbe) || *only == bench::suiteName(suite))
+        bench::runSuite(suite, *options, print);
   });
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -44,18 +45,20 @@
 #include "pixelcloth/patches/raster.h"
 #include "pixelcloth/sim/garment_sim.h"
 #include "pixelcloth/sim/generate.h"
+#include "pixelcloth/sim/shape_comparison.h"
 #include "pixelcloth/stitch/assemble.h"
 #include "pixelcloth/stitch/stitcher.h"
 
 namespace pixelcloth::bench {
 
 namespace {
-const core::EnumNames<Suite, 5> kSuites{"bench suite",
+const core::EnumNames<Suite, 6> kSuites{"bench suite",
                                         {{{Suite::Procedural, "procedural"},
                                           {Suite::Learn, "learn"},
                                           {Suite::Stitch, "stitch"},
                                           {Suite::Motion, "motion"},
-                                          {Suite::Equilibrium, "equilibrium"}}}};
+                                          {Suite::Equilibrium, "equilibrium"},
+                                          {Suite::EquilibriumProbe, "equilibrium_probe"}}}};
 
 using namespace pixelcloth::core;
 using namespace pixelcloth::body;
@@ -447,6 +450,109 @@ void benchEquilibrium(const FigureSink& sink) {
   emit(sink, "sim.newton.tshirt_max_residual_force_of_weight", worst, "ratio", options.newton.solver.forceTolerance);
 }
 
+/// The equilibrium probe (docs/simulation.md, "Newton solver"): the Newton solver on poses of two seeds never used to
+/// tune anything, each simulated once without redraws. Acceptance on the 3000-vertex T-shirt (goal 95%); the same
+/// poses on meshes of 2500, 3500 and 4000 vertices of the pattern (acceptance within 3 points of each other, shapes
+/// within 0.5 cm of the 3000-vertex mesh's, mean over the poses both keep, compared through the pattern); and along a
+/// second continuation path, steps of at most 10 degrees instead of 25 (within 0.3 cm, the spread the issue allows).
+void benchEquilibriumProbe(const FigureSink& sink, int count) {
+  PIXELCLOTH_CHECK(count >= 2 && count <= 10000, "bench: " << count << " probe poses, expected 2 to 10000");
+  const Body body = makeMannequin();
+  const cage::Cage bodyCage = cage::bodyCage(body);
+  std::vector<Pose> poses;
+  for (int i = 0; i < count; ++i)  // seeds 9001 and 9002: no figure or setting was tuned on them
+    poses.push_back(sim::samplePose(body, GarmentTraits{}, i < count / 2 ? 9001 : 9002, i, 0));
+  sim::SimulationOptions options;
+  options.kind = sim::SolverKind::Newton;
+  struct Run {
+    Garment garment;
+    std::vector<data::Sample> samples;
+    int kept = 0;
+  };
+  auto simulate = [&](const Garment& garment, const sim::SimulationOptions& o) {
+    std::cerr << "bench: equilibrium probe, " << garment.mesh.numVertices() << " vertices, steps of " << o.stepDegrees
+              << " degrees, " << count << " poses\n";
+    const cage::Dressing dressing = cage::dressGarment(body, bodyCage, garment, cage::garmentCage(garment));
+    Run run{garment, sim::simulatePoseSamples(body, garment, dressing, poses, o), 0};
+    std::map<std::string, int> rejected;
+    for (const data::Sample& sample : run.samples) {
+      if (sample.stats.rejection == data::Rejection::None)
+        ++run.kept;
+      else
+        ++rejected[data::rejectionName(sample.stats.rejection)];
+    }
+    std::cerr << "bench: equilibrium probe, " << garment.mesh.numVertices() << " vertices: " << run.kept << " of "
+              << count << " kept;";
+    for (const auto& [reason, n] : rejected) std::cerr << ' ' << reason << ' ' << n;
+    std::cerr << '\n';
+    return run;
+  };
+  auto percentKept = [&](const Run& run) { return 100.0 * run.kept / count; };
+  // Mean over the poses both runs keep of the mean distance between their shapes (cm), and how many there were.
+  auto distance = [&](const Run& a, const Run& b, int& pairs) {
+    double total = 0;
+    pairs = 0;
+    for (int i = 0; i < count; ++i) {
+      if (a.samples[i].stats.rejection != data::Rejection::None ||
+          b.samples[i].stats.rejection != data::Rejection::None)
+        continue;
+      const Eigen::VectorXd d = sim::distancesThroughPattern(a.garment, a.samples[i].positions.cast<double>(),
+                                                             b.garment, b.samples[i].positions.cast<double>());
+      double sum = 0;
+      int counted = 0;
+      for (int v = 0; v < d.size(); ++v)
+        if (std::isfinite(d(v))) sum += d(v), ++counted;
+      total += counted > 0 ? sum / counted : 0.0;
+      ++pairs;
+    }
+    return pairs > 0 ? 100 * total / pairs : 0.0;
+  };
+
+  const Run base = simulate(makeTShirt(), options);
+  double worst = 0, seconds = 0;
+  for (const data::Sample& sample : base.samples) {
+    seconds += sample.stats.seconds;
+    if (sample.stats.rejection == data::Rejection::None) worst = std::max(worst, sample.stats.residualForceRatio);
+  }
+  sink(nlohmann::ordered_json{{"name", "sim.newton.probe.kept_percent_unseen_poses"},
+                              {"value", percentKept(base)},
+                              {"unit", "%"},
+                              {"goal", 95},
+                              {"higher_is_better", true},
+                              {"poses", count}});
+  emit(sink, "sim.newton.probe.max_residual_force_of_weight", worst, "ratio", options.newton.solver.forceTolerance);
+  emit(sink, "sim.newton.probe.seconds_per_pose", seconds / count, "s", 0.25);
+
+  double lowest = percentKept(base), highest = lowest;
+  for (const int vertices : {2500, 3500, 4000}) {
+    TShirtOptions shirt;
+    shirt.targetVertices = vertices;
+    const Run run = simulate(makeTShirt(shirt), options);
+    lowest = std::min(lowest, percentKept(run));
+    highest = std::max(highest, percentKept(run));
+    const std::string name = "sim.newton.probe.mesh_" + std::to_string(vertices);
+    sink(nlohmann::ordered_json{{"name", name + "_kept_percent"},
+                                {"value", percentKept(run)},
+                                {"unit", "%"},
+                                {"goal", 95},
+                                {"higher_is_better", true},
+                                {"vertices", run.garment.mesh.numVertices()}});
+    int pairs = 0;
+    const double cm = distance(base, run, pairs);
+    sink(nlohmann::ordered_json{
+        {"name", name + "_shape_vs_3000_cm"}, {"value", cm}, {"unit", "cm"}, {"goal", 0.5}, {"poses", pairs}});
+  }
+  emit(sink, "sim.newton.probe.mesh_kept_spread_points", highest - lowest, "points", 3);
+
+  sim::SimulationOptions finer = options;
+  finer.stepDegrees = 10;
+  const Run path = simulate(makeTShirt(), finer);
+  int pairs = 0;
+  const double spread = distance(base, path, pairs);
+  sink(nlohmann::ordered_json{
+      {"name", "sim.newton.probe.path_spread_cm"}, {"value", spread}, {"unit", "cm"}, {"goal", 0.3}, {"poses", pairs}});
+}
+
 }  // namespace
 
 const char* suiteName(Suite suite) { return kSuites.name(suite); }
@@ -468,6 +574,8 @@ void runSuite(Suite suite, const SuiteOptions& options, const FigureSink& sink) 
       return benchMotion(sink);
     case Suite::Equilibrium:
       return benchEquilibrium(sink);
+    case Suite::EquilibriumProbe:
+      return benchEquilibriumProbe(sink, options.probePoses);
   }
 }
 

@@ -248,11 +248,11 @@ GenerateReport generateDataset(const std::filesystem::path& out, const GenerateO
 
 namespace pixelcloth::sim {
 
-std::vector<data::SampleStats> simulatePoses(const body::Body& body, const garment::Garment& garment,
-                                             const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
-                                             const SimulationOptions& options, int threads) {
-  std::vector<data::SampleStats> stats(poses.size());
-  if (poses.empty()) return stats;
+std::vector<data::Sample> simulatePoseSamples(const body::Body& body, const garment::Garment& garment,
+                                              const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
+                                              const SimulationOptions& options, int threads) {
+  std::vector<data::Sample> samples(poses.size());
+  if (poses.empty()) return samples;
   GarmentSimulator first(body, garment, dressing, options);
   std::unique_ptr<core::Progress> progress;
   progress = std::make_unique<core::Progress>("simulate " + garment.name, static_cast<int>(poses.size()));
@@ -260,13 +260,22 @@ std::vector<data::SampleStats> simulatePoses(const body::Body& body, const garme
   forEachOnSimulators(first, body, garment, dressing, options, static_cast<int>(poses.size()),
                       core::threadCount(threads, static_cast<int>(poses.size())),
                       [&](GarmentSimulator& simulator, int k) {
-                        stats[k] = simulator.simulate(poses[k]).stats;
+                        samples[k] = simulator.simulate(poses[k]);
                         if (progress) {
                           std::lock_guard<std::mutex> lock(progressMutex);
                           progress->advance();
                         }
                       });
   if (progress) progress->finish();
+  return samples;
+}
+
+std::vector<data::SampleStats> simulatePoses(const body::Body& body, const garment::Garment& garment,
+                                             const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
+                                             const SimulationOptions& options, int threads) {
+  std::vector<data::SampleStats> stats;
+  for (const data::Sample& sample : simulatePoseSamples(body, garment, dressing, poses, options, threads))
+    stats.push_back(sample.stats);
   return stats;
 }
 

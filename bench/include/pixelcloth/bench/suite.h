@@ -12,9 +12,11 @@
 namespace pixelcloth::bench {
 
 /// The suites: body to simulation and files; the decoders at the paper's width; the PCA filter's fit.
-/// The Newton equilibrium solver's T-shirt figures (a few minutes) are a suite of their own.
-enum class Suite { Procedural, Learn, Stitch, Motion, Equilibrium };
-const char* suiteName(Suite suite);  ///< "procedural", "learn", "stitch", "motion", "equilibrium"
+/// The Newton equilibrium solver's T-shirt figures (a few minutes) are a suite of their own, and its probe over unseen
+/// poses, meshes and continuation paths (tens of minutes) another, not part of "all".
+enum class Suite { Procedural, Learn, Stitch, Motion, Equilibrium, EquilibriumProbe };
+/// "procedural", "learn", "stitch", "motion", "equilibrium", "equilibrium_probe"
+const char* suiteName(Suite suite);
 Suite suiteFromName(const std::string& name, const std::string& context);  ///< InputError naming `context` otherwise
 
 /// Receives each figure as soon as it is measured.
@@ -24,6 +26,7 @@ using FigureSink = std::function<void(const nlohmann::ordered_json& figure)>;
 struct SuiteOptions {
   int repeats = 5;        ///< runs per figure, the median reported, [1, 100]
   int epochShirts = 400;  ///< shirts simulated for learn.epoch_seconds_w025 (80% train), [10, 100000]
+  int probePoses = 32;    ///< poses the equilibrium probe simulates on each mesh and path, [2, 10000]
 };
 
 /// Measures `suite`, handing each figure to `sink`. Notes on what was measured go to stderr.

@@ -54,8 +54,12 @@ struct GenerateReport {
 GenerateReport generateDataset(const std::filesystem::path& out, const GenerateOptions& options);
 
 /// Simulates `garment` (dressed by `dressing`) on `body` in every one of `poses` on `threads` threads (0: one per
-/// core), with progress on stderr: each pose's statistics, rejection included, in the order given.
-/// No pose is redrawn: for rejection rates over a fixed set of poses.
+/// core), with progress on stderr: each pose's sample (statistics, rejection included, positions and offsets), in
+/// the order given. No pose is redrawn: for rejection rates over a fixed set of poses.
+std::vector<data::Sample> simulatePoseSamples(const body::Body& body, const garment::Garment& garment,
+                                              const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
+                                              const SimulationOptions& options = {}, int threads = 0);
+/// The same, the statistics only.
 std::vector<data::SampleStats> simulatePoses(const body::Body& body, const garment::Garment& garment,
                                              const cage::Dressing& dressing, const std::vector<body::Pose>& poses,
                                              const SimulationOptions& options = {}, int threads = 0);

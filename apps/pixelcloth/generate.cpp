@@ -14,11 +14,16 @@ struct GenerateArgs {
   bool quiet = false;
   std::string out;
   std::string solver = "pd";
+  double stepDegrees = 0;  ///< 0: the solver's own default
 };
 
 void runGenerate(GenerateArgs args) {
   if (args.quiet) core::setLogLevel(core::LogLevel::Warning);
-  args.options.simulation.kind = sim::parseSolverKind(args.solver, "generate --solver");
+  sim::SimulationOptions& simulation = args.options.simulation;
+  simulation.kind = sim::parseSolverKind(args.solver, "generate --solver");
+  if (args.stepDegrees > 0)
+    (simulation.kind == sim::SolverKind::Newton ? simulation.newton.stepDegrees : simulation.stepDegrees) =
+        args.stepDegrees;
   const sim::GenerateReport report = sim::generateDataset(args.out, args.options);
   PIXELCLOTH_INFO("generate: " << report.added << " samples simulated (" << report.resumed << " already done, "
                                << report.rejected << " simulations rejected) in " << report.seconds << " s -> "
@@ -49,10 +54,10 @@ void registerGenerate(CLI::App& app) {
                    "Quasistatic solver: 'pd' (projective dynamics, fixed schedule) or 'newton' (run to static "
                    "equilibrium, verified by the net force on every vertex; about 40x slower)")
       ->capture_default_str();
-  verb->add_option("--step-degrees", o.simulation.stepDegrees,
+  verb->add_option("--step-degrees", args->stepDegrees,
                    "Continuation: the body moves from the rest pose to each sampled pose in steps of at most this "
-                   "many degrees of any joint's rotation, the cloth solved at each")
-      ->capture_default_str()
+                   "many degrees of any joint's rotation, the cloth solved at each (default: 25 with pd, 10 with "
+                   "newton)")
       ->check(CLI::Range(1.0, 180.0));
   verb->add_option("--threads", o.threads, "Worker threads (0: one per core)")->capture_default_str();
   verb->add_flag("--quiet", args->quiet, "No progress on stderr");

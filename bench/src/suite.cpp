@@ -454,7 +454,7 @@ void benchEquilibrium(const FigureSink& sink) {
 /// tune anything, each simulated once without redraws. Acceptance on the 3000-vertex T-shirt (goal 95%); the same
 /// poses on meshes of 2500, 3500 and 4000 vertices of the pattern (acceptance within 3 points of each other, shapes
 /// within 0.5 cm of the 3000-vertex mesh's, mean over the poses both keep, compared through the pattern); and along a
-/// second continuation path, steps of at most 10 degrees instead of 25 (within 0.3 cm, the spread the issue allows).
+/// second continuation path, steps of at most twice the degrees (within 0.3 cm, the spread the issue allows).
 void benchEquilibriumProbe(const FigureSink& sink, int count) {
   PIXELCLOTH_CHECK(count >= 2 && count <= 10000, "bench: " << count << " probe poses, expected 2 to 10000");
   const Body body = makeMannequin();
@@ -470,8 +470,8 @@ void benchEquilibriumProbe(const FigureSink& sink, int count) {
     int kept = 0;
   };
   auto simulate = [&](const Garment& garment, const sim::SimulationOptions& o) {
-    std::cerr << "bench: equilibrium probe, " << garment.mesh.numVertices() << " vertices, steps of " << o.stepDegrees
-              << " degrees, " << count << " poses\n";
+    std::cerr << "bench: equilibrium probe, " << garment.mesh.numVertices() << " vertices, steps of "
+              << o.newton.stepDegrees << " degrees, " << count << " poses\n";
     const cage::Dressing dressing = cage::dressGarment(body, bodyCage, garment, cage::garmentCage(garment));
     Run run{garment, sim::simulatePoseSamples(body, garment, dressing, poses, o), 0};
     std::map<std::string, int> rejected;
@@ -544,9 +544,9 @@ void benchEquilibriumProbe(const FigureSink& sink, int count) {
   }
   emit(sink, "sim.newton.probe.mesh_kept_spread_points", highest - lowest, "points", 3);
 
-  sim::SimulationOptions finer = options;
-  finer.stepDegrees = 10;
-  const Run path = simulate(makeTShirt(), finer);
+  sim::SimulationOptions other = options;
+  other.newton.stepDegrees = 2 * options.newton.stepDegrees;
+  const Run path = simulate(makeTShirt(), other);
   int pairs = 0;
   const double spread = distance(base, path, pairs);
   sink(nlohmann::ordered_json{

@@ -48,6 +48,8 @@ void NewtonSchedule::validate() const {
   PIXELCLOTH_CHECK(stepTolerance > 0 && std::isfinite(stepTolerance),
                    "simulation: step tolerance must be positive, got " << stepTolerance);
   PIXELCLOTH_CHECK(frictionLags >= 0, "simulation: friction lags must be >= 0, got " << frictionLags);
+  PIXELCLOTH_CHECK(stepDegrees > 0 && stepDegrees <= 180,
+                   "simulation: step must be in (0, 180] degrees, got " << stepDegrees);
 }
 
 void SimulationOptions::validate() const {
@@ -248,7 +250,8 @@ void GarmentSimulator::rideAlong(Eigen::MatrixX3d& x, const body::Pose& pose) {
 
 data::Sample GarmentSimulator::simulate(const body::Pose& pose) {
   const auto start = std::chrono::steady_clock::now();
-  const int steps = std::max(1, static_cast<int>(std::ceil(largestJointAngle(pose) / options_.stepDegrees)));
+  const double stepDegrees = newton_ ? options_.newton.stepDegrees : options_.stepDegrees;
+  const int steps = std::max(1, static_cast<int>(std::ceil(largestJointAngle(pose) / stepDegrees)));
   Eigen::MatrixX3d x = rest_;
   data::Sample sample;
   if (newton_) {

@@ -67,7 +67,7 @@ nlohmann::json simulationSettings(const SimulationOptions& s) {
             {"friction_slip_m", q.frictionSlip},
             {"force_tolerance_of_weight", q.forceTolerance},
             {"max_penetration_m", s.maxPenetration},
-            {"step_degrees", s.stepDegrees},
+            {"step_degrees", n.stepDegrees},
             {"iterations_per_step", n.iterationsPerStep},
             {"step_tolerance_of_weight", n.stepTolerance},
             {"final_iterations", n.finalIterations},

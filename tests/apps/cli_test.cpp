@@ -37,7 +37,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
       {"dress", {"--garment", "tshirt", "necktie", "--body", "--out"}},
       {"generate",
        {"--count", "--seed", "--out", "--garment", "--shard", "--body", "--body-shape", "--corrupt-weights", "--solver",
-        "newton", "--threads", "--quiet"}},
+        "newton", "--step-degrees", "--threads", "--quiet"}},
       {"markers", {"--garment", "--spacing", "--dataset", "--sample", "--noise", "--dropout", "--pose-out", "--out"}},
       {"reconstruct",
        {"--markers", "--pose", "--body", "--dressing", "--method", "--dataset", "--split", "--noise", "--dropout",

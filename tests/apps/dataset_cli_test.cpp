@@ -196,6 +196,9 @@ TEST_F(CliTest, GenerateRefusesBadSettings) {
   const CliRun solver = runPixelcloth({"generate", "--count", "4", "--solver", "ipc", "--out", (out / "e").string()});
   EXPECT_TRUE(refused(solver, {"generate --solver", "'ipc'", "pd or newton"})) << solver;
   EXPECT_FALSE(fs::exists(out / "e"));
+  EXPECT_TRUE(refused(runPixelcloth({"generate", "--count", "4", "--step-degrees", "0", "--out", (out / "f").string()}),
+                      {"--step-degrees"}));
+  EXPECT_FALSE(fs::exists(out / "f"));
 }
 
 TEST_F(CliDatasetTest, DatasetFilesAreVerifiedWhenOpenedUnlessNoVerify) {

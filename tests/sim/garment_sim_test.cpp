@@ -181,6 +181,10 @@ TEST(SimulationOptions, SolverNamesAndNewtonScheduleOutOfRangeAreRefused) {
   options.newton.frictionLags = 0;
   options.newton.stepTolerance = 0;
   EXPECT_NE(testing::inputErrorOf([&] { options.validate(); }).find("step tolerance"), std::string::npos);
+  options.newton.stepTolerance = 0.2;
+  options.newton.stepDegrees = 0;
+  EXPECT_NE(testing::inputErrorOf([&] { options.validate(); }).find("step must be in (0, 180] degrees"),
+            std::string::npos);
 }
 
 }  // namespace

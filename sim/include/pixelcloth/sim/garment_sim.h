@@ -41,6 +41,11 @@ struct NewtonSchedule {
   /// is solved to the solver's own tolerance.
   int iterationsPerStep = 8;
   double stepTolerance = 0.2;
+  /// Continuation: no joint turns by more than this between two steps (SimulationOptions::stepDegrees is projective
+  /// dynamics'). Each step rides the cloth with the body from where the last one left it, and a shorter step carries
+  /// less of it into a part that moves towards it: 23 of 32 unseen poses kept at 10 degrees, 14 at 25
+  /// (docs/simulation.md).
+  double stepDegrees = 10;
   /// Newton iterations at most at the target pose, per friction lag (`frictionLags` + 1 solves): a pose that does not
   /// reach the force tolerance within them is rejected as `not_converged`.
   int finalIterations = 300;

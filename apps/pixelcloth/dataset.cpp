@@ -96,8 +96,8 @@ void runCompare(const DatasetArgs& args) {
                                                                      << ") has the pose of one of " << args.folder
                                                                      << " (" << c.rowsA << "): nothing to compare");
   std::cout << c.rows.size() << " samples posed alike (of " << c.rowsA << " and " << c.rowsB << "): mean distance "
-            << 100 * c.meanDistance() << " cm (mean over the samples of the mean over the "
-            << "vertices, through the pattern), largest " << 100 * c.maxDistance() << " cm\n";
+            << 100 * c.meanDistance() << " cm (over the samples, of the mean over the second garment's vertices), "
+            << "largest " << 100 * c.maxDistance() << " cm\n";
 }
 
 void runMerge(const DatasetArgs& args) {

@@ -496,13 +496,9 @@ void benchEquilibriumProbe(const FigureSink& sink, int count) {
       if (a.samples[i].stats.rejection != data::Rejection::None ||
           b.samples[i].stats.rejection != data::Rejection::None)
         continue;
-      const Eigen::VectorXd d = sim::distancesThroughPattern(a.garment, a.samples[i].positions.cast<double>(),
-                                                             b.garment, b.samples[i].positions.cast<double>());
-      double sum = 0;
-      int counted = 0;
-      for (int v = 0; v < d.size(); ++v)
-        if (std::isfinite(d(v))) sum += d(v), ++counted;
-      total += counted > 0 ? sum / counted : 0.0;
+      total += sim::summarise(sim::distancesThroughPattern(a.garment, a.samples[i].positions.cast<double>(), b.garment,
+                                                           b.samples[i].positions.cast<double>()))
+                   .mean;
       ++pairs;
     }
     return pairs > 0 ? 100 * total / pairs : 0.0;

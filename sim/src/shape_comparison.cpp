@@ -37,7 +37,9 @@ PatternMap patternMap(const garment::Garment& a, const garment::Garment& b, int 
     // Sample a's image at b's vertices of the layout: b's own raster names them, a's mask says which pixels hold a.
     patches::RasterOperator probe = raster;
     probe.layout = lb;
-    probe.vertices = patches::buildRaster(b, lb, frame).vertices;
+    probe.vertices.clear();
+    for (int v = 0; v < b.mesh.numVertices(); ++v)
+      if (b.vertexUV(v, lb) >= 0) probe.vertices.push_back(v);
     map.samples.push_back(patches::buildSample(b, probe));
     map.rasters.push_back(std::move(raster));
   }
@@ -83,6 +85,19 @@ Eigen::VectorXd distancesThroughPattern(const garment::Garment& a, const Eigen::
   return sampledDistances(patternMap(a, b, size), xa, xb);
 }
 
+DistanceSummary summarise(const Eigen::VectorXd& distances) {
+  DistanceSummary summary;
+  int counted = 0;
+  for (int v = 0; v < distances.size(); ++v) {
+    if (!std::isfinite(distances(v))) continue;
+    summary.mean += distances(v);
+    summary.max = std::max(summary.max, distances(v));
+    ++counted;
+  }
+  if (counted > 0) summary.mean /= counted;
+  return summary;
+}
+
 double ShapeComparison::meanDistance() const {
   if (mean.empty()) return 0;
   double total = 0;
@@ -116,13 +131,10 @@ ShapeComparison compareDatasets(const data::Dataset& a, const data::Dataset& b, 
     found->second.pop_back();
     const Eigen::MatrixX3d xa = a.positionsOf(rowA).cast<double>(), xb = b.positionsOf(r).cast<double>();
     const Eigen::VectorXd d = same ? vertexDistances(xa, xb) : sampledDistances(map, xa, xb);
-    double total = 0, largest = 0;
-    int counted = 0;
-    for (int v = 0; v < d.size(); ++v)
-      if (std::isfinite(d(v))) total += d(v), largest = std::max(largest, d(v)), ++counted;
+    const DistanceSummary summary = summarise(d);
     result.rows.emplace_back(rowA, r);
-    result.mean.push_back(counted > 0 ? total / counted : 0.0);
-    result.max.push_back(largest);
+    result.mean.push_back(summary.mean);
+    result.max.push_back(summary.max);
   }
   return result;
 }

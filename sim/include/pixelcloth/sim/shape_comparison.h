@@ -18,6 +18,13 @@ namespace pixelcloth::sim {
 Eigen::VectorXd distancesThroughPattern(const garment::Garment& a, const Eigen::MatrixX3d& xa,
                                         const garment::Garment& b, const Eigen::MatrixX3d& xb, int size = 512);
 
+/// The mean and the largest of per-vertex distances (metres), over the finite ones (distancesThroughPattern leaves
+/// NaN where no pixel of the first garment lies near a vertex); 0 and 0 when none is.
+struct DistanceSummary {
+  double mean = 0, max = 0;
+};
+DistanceSummary summarise(const Eigen::VectorXd& distances);
+
 /// The samples two datasets hold for the same poses (identical pose vectors), compared through the pattern: how far
 /// apart two simulations of one pose end (two meshes of a pattern, two continuation paths).
 struct ShapeComparison {

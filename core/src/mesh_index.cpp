@@ -137,6 +137,11 @@ bool MeshIndex::intersects(const Eigen::Vector3d& a, const Eigen::Vector3d& b) c
   return impl_->tree.do_intersect(Kernel::Segment_3(toPoint(a), toPoint(b)));
 }
 
+int MeshIndex::crossings(const Eigen::Vector3d& p, const Eigen::Vector3d& direction) const {
+  return static_cast<int>(impl_->tree.number_of_intersected_primitives(
+      Kernel::Ray_3(toPoint(p), Kernel::Direction_3(direction.x(), direction.y(), direction.z()))));
+}
+
 bool MeshIndex::inside(const Eigen::Vector3d& p) const { return inside(p, closest(p)); }
 
 bool MeshIndex::inside(const Eigen::Vector3d& p, const MeshHit& h) const {

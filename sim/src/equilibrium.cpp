@@ -31,6 +31,8 @@ constexpr double kGridCell = 0.015;
 /// turns, a sleeve vertex embedded on the torso rides with the torso and can end up 1.5 cm inside the arm; at 1 cm, 7
 /// of the bench's 8 T-shirt poses kept such a vertex inside (the barrier, on the unsigned distance, holds it there).
 constexpr double kDeepest = 0.05;
+/// EquilibriumSolver::Impl::outOfFold tests this many faces nearest to an enclosed vertex for a way out.
+constexpr size_t kExitsTried = 200;
 
 /// IPC's barrier b(d) = -(d - dhat)^2 ln(d / dhat) on 0 < d < dhat and its first two derivatives.
 struct Barrier {
@@ -498,7 +500,8 @@ struct EquilibriumSolver::Impl {
   /// kDeepest, out along its contact normal to half the barrier distance. Deeper vertices are left where they are
   /// (the barrier then keeps them off the surface from inside, and the sample's penetration test judges them): body
   /// parts are open where they meet, and "inside" an arm beyond its opening at the shoulder is not inside the body.
-  /// A vertex inside a collider other than its own is left there, and that collider dormant for it.
+  /// A vertex inside a collider other than its own is left there, and that collider dormant for it. Then a vertex
+  /// that its own collider encloses where that passes through itself is moved out of it (outOfFold).
   void pushOut(Eigen::MatrixX3d& x) {
     const double dhat = options->barrierDistance;
     for (int round = 0; round < 3; ++round) {
@@ -515,8 +518,51 @@ struct EquilibriumSolver::Impl {
           x.row(v) += (0.5 * dhat - d) * closest[k].normal.transpose();
           moved = true;
         }
-      if (!moved) return;
+      if (!moved) break;
     }
+    for (int v = 0; v < n; ++v) outOfFold(v, x);
+  }
+
+  /// A part that passes through itself (skinning folds the forearm into the upper arm at a bent elbow) encloses
+  /// cloth that its nearest sheet sees outside: the cloth the continuation carried behind the forearm's skin while it
+  /// rode with the upper arm. The nearest sheet's test (pushOut's) misses it, and as the solve moves it on, the
+  /// nearest sheet becomes the forearm's and it reads inside. Ray parity sees the part's whole volume: a vertex the
+  /// part encloses is moved to the nearest point half the barrier distance in front of a face that the part does not
+  /// enclose (out through every sheet of the fold, not into the next one). Returns whether it moved.
+  bool outOfFold(int v, Eigen::MatrixX3d& x) {
+    const int k = pairStart[v];
+    if (k == pairStart[v + 1]) return false;
+    const int c = pairCollider[k];
+    const Eigen::Vector3d p = x.row(v).transpose();
+    if (lookedDistance(k) > kDeepest || !encloses(c, p)) return false;
+    const detail::ColliderState& part = colliders[c];
+    std::vector<std::pair<double, Eigen::Vector3d>> exits;  // (distance, the point in front of the face)
+    grids[c].near(p, kDeepest, seenFaces, [&](int f) {
+      const Eigen::Vector3d a = part.mesh.V.row(part.mesh.F(f, 0)), b = part.mesh.V.row(part.mesh.F(f, 1)),
+                            d = part.mesh.V.row(part.mesh.F(f, 2));
+      const Eigen::Vector3d bary = core::closestPointOnTriangle(p, a, b, d);
+      const Eigen::Vector3d q = bary(0) * a + bary(1) * b + bary(2) * d;
+      const double distance = (p - q).norm();
+      if (distance < kDeepest)
+        exits.emplace_back(distance, q + 0.5 * options->barrierDistance * part.normals.row(f).transpose());
+    });
+    std::sort(exits.begin(), exits.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (size_t i = 0; i < exits.size() && i < kExitsTried; ++i)
+      if (!encloses(c, exits[i].second)) {
+        x.row(v) = exits[i].second.transpose();
+        lookedDistance(k) = -kInfinity;  // look up again
+        return true;
+      }
+    return false;
+  }
+
+  /// Whether collider c's surface encloses p: at least two of three rays from p in different directions cross it an
+  /// odd number of times (a ray that leaves through one of the part's openings undercounts).
+  bool encloses(int c, const Eigen::Vector3d& p) {
+    const core::MeshIndex& tree = colliders[c].tree();
+    const int odd = tree.crossings(p, Eigen::Vector3d(0.36, 0.48, 0.8)) % 2 +
+                    tree.crossings(p, Eigen::Vector3d(-0.64, -0.6, -0.48)) % 2;
+    return odd == 1 ? tree.crossings(p, Eigen::Vector3d(0.6, -0.64, 0.48)) % 2 == 1 : odd == 2;
   }
 
   /// The barrier's force on vertex v at p (zero beyond its reach).

@@ -163,6 +163,29 @@ TEST(MeshIndex, InsideSegmentsAndNormalsOfTheUnitCube) {
   EXPECT_GT(normal.x(), 0.5);
 }
 
+TEST(MeshIndex, RayCrossingsCountEverySheetOfAMeshThatPassesThroughItself) {
+  // Two unit cubes in one mesh, the second shifted half a cube along x: a point in the second only (x in (1, 1.5))
+  // is nearer the first's skin, which it is outside of, yet every ray from it crosses the mesh an odd number of times.
+  Eigen::MatrixX3d V, V2;
+  Eigen::MatrixX3i F, F2;
+  cube(V, F);
+  cube(V2, F2);
+  Eigen::MatrixX3d both(16, 3);
+  both << V, V2.rowwise() + Eigen::RowVector3d(0.5, 0, 0);
+  Eigen::MatrixX3i faces(2 * F.rows(), 3);
+  faces << F, F2.array() + 8;
+  const pc::MeshIndex index(both, faces);
+  const Eigen::Vector3d enclosed(1.05, 0.37, 0.61);
+  EXPECT_FALSE(index.inside(enclosed));  // the nearest sheet's test sees only the first cube's +x face
+  for (const Eigen::Vector3d direction :
+       {Eigen::Vector3d(0.36, 0.48, 0.8), Eigen::Vector3d(-1, 0.1, 0.2), Eigen::Vector3d(0.1, -0.3, -1)})
+    EXPECT_EQ(index.crossings(enclosed, direction) % 2, 1) << direction.transpose();
+  // In both cubes: two sheets around it, an even count; outside both: even too, 0 away from them.
+  EXPECT_EQ(index.crossings(Eigen::Vector3d(0.8, 0.37, 0.61), Eigen::Vector3d(1, 0.1, 0.2)), 2);
+  EXPECT_EQ(index.crossings(Eigen::Vector3d(3, 0.37, 0.61), Eigen::Vector3d(1, 0.1, 0.2)), 0);
+  EXPECT_EQ(index.crossings(Eigen::Vector3d(-1, 0.37, 0.61), Eigen::Vector3d(1, 0.1, 0.2)), 4);
+}
+
 TEST(MeshIndex, FacesOutsideTheVerticesAreRefused) {
   Eigen::MatrixX3d V;
   Eigen::MatrixX3i F;

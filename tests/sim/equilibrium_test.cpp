@@ -1,6 +1,7 @@
 // The Newton equilibrium solver: forces are the energy's gradient, a hanging sheet and a sheet draped over a sphere
 // reach the force tolerance, no vertex ever enters the collider or passes through an opening into the part that meets
-// it, and friction holds cloth on a slope.
+// it, cloth that a collider folded through itself encloses is moved out of its whole volume, and friction holds cloth
+// on a slope.
 #include "pixelcloth/sim/equilibrium.h"
 
 #include <gtest/gtest.h>
@@ -216,6 +217,39 @@ TEST(Equilibrium, ClothTheBodyCarriedIntoAPartItsOwnMeetsIsLeftThereAndNotHeld) 
   high.V.col(1).array() -= 0.045;
   const Eigen::MatrixX3d held = drape({below, high}, {{1}, {0}}, moved);
   EXPECT_GT(held(n * n / 2, 1), -0.016);
+}
+
+TEST(Equilibrium, ClothAPartFoldedThroughItselfEnclosesIsMovedOutOfItsWholeVolume) {
+  // One collider that passes through itself, as a skinned arm does where the bent elbow folds the forearm into the
+  // upper arm: a small ball poking out of a large one, both in one mesh. A sheet inside the small ball but nearer
+  // the large ball's skin (outside it) reads outside by its nearest sheet; the step's start moves it out of both.
+  const Collider large = sphere(0.1), small = sphere(0.05);
+  Collider folded;
+  folded.V.resize(large.V.rows() + small.V.rows(), 3);
+  folded.V << large.V, small.V.rowwise() + Eigen::RowVector3d(0.1, 0, 0);
+  folded.F.resize(large.F.rows() + small.F.rows(), 3);
+  folded.F << large.F, small.F.array() + static_cast<int>(large.V.rows());
+  const int n = 3;
+  core::Mesh cloth = sheet(n, 0.004, 0);
+  cloth.V.rowwise() += Eigen::RowVector3d(0.111, 0.018, -0.002);
+  auto outsideLarge = [](const Eigen::RowVector3d& p) { return p.norm() - 0.1; };
+  auto insideSmall = [](const Eigen::RowVector3d& p) { return 0.05 - (p - Eigen::RowVector3d(0.1, 0, 0)).norm(); };
+  for (int v = 0; v < cloth.numVertices(); ++v) {
+    ASSERT_GT(insideSmall(cloth.V.row(v)), 0.02);
+    ASSERT_LT(outsideLarge(cloth.V.row(v)), insideSmall(cloth.V.row(v)) - 0.005);  // the large ball's skin is nearer
+    ASSERT_GT(outsideLarge(cloth.V.row(v)), 0.005);
+  }
+  EquilibriumSolver solver(cloth, {});
+  solver.setColliders({folded}, std::vector<int>(cloth.numVertices(), 0));
+  ASSERT_GT(solver.distances(cloth.V).minCoeff(), 0);  // the nearest sheet's test: outside
+  Eigen::MatrixX3d x = cloth.V;
+  solver.beginStep(x);
+  for (int v = 0; v < cloth.numVertices(); ++v) {
+    EXPECT_LT(insideSmall(x.row(v)), 0) << "vertex " << v << " still inside the small ball";
+    EXPECT_GT(outsideLarge(x.row(v)), 0) << "vertex " << v << " moved into the large ball";
+    EXPECT_LT((x.row(v) - cloth.V.row(v)).norm(), 0.04) << "vertex " << v << " moved further than out";
+  }
+  EXPECT_TRUE(std::isfinite(solver.energy(x)));
 }
 
 TEST(Equilibrium, ClosestPointsLieOnEachVertexsOwnCollider) {

@@ -31,6 +31,9 @@ class MeshIndex {
   MeshHit closest(const Eigen::Vector3d& p, const MeshHit& near) const;
   /// True when the segment [a, b] meets a triangle of the mesh.
   bool intersects(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const;
+  /// How many triangles the ray from `p` along `direction` meets: odd inside a closed mesh, whether or not it
+  /// passes through itself, where the pseudo-normal test sees only the nearest sheet.
+  int crossings(const Eigen::Vector3d& p, const Eigen::Vector3d& direction) const;
   /// For a closed, outward-oriented mesh: true where `p` is strictly inside, by the pseudo-normal test of Baerentzen
   /// and Aanaes (2005) at the closest point (exact for closed meshes).
   bool inside(const Eigen::Vector3d& p) const;

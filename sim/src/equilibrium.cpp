@@ -556,13 +556,16 @@ struct EquilibriumSolver::Impl {
     return false;
   }
 
-  /// Whether collider c's surface encloses p: at least two of three rays from p in different directions cross it an
-  /// odd number of times (a ray that leaves through one of the part's openings undercounts).
+  /// Whether collider c's surface encloses p: each of three rays from p in different directions crosses it an odd
+  /// number of times. Body parts are open where they meet: a ray that leaves an enclosed point through an opening
+  /// undercounts, and one from cloth just over an opening (the shirt's hem under the torso's, its collar over the
+  /// neck's) enters through it and counts one. Two of three rays let such hem and collar vertices through: the rest
+  /// settle of the T-shirt took 381 Newton iterations instead of 131.
   bool encloses(int c, const Eigen::Vector3d& p) {
     const core::MeshIndex& tree = colliders[c].tree();
-    const int odd = tree.crossings(p, Eigen::Vector3d(0.36, 0.48, 0.8)) % 2 +
-                    tree.crossings(p, Eigen::Vector3d(-0.64, -0.6, -0.48)) % 2;
-    return odd == 1 ? tree.crossings(p, Eigen::Vector3d(0.6, -0.64, 0.48)) % 2 == 1 : odd == 2;
+    return tree.crossings(p, Eigen::Vector3d(0.36, 0.48, 0.8)) % 2 == 1 &&
+           tree.crossings(p, Eigen::Vector3d(-0.64, -0.6, -0.48)) % 2 == 1 &&
+           tree.crossings(p, Eigen::Vector3d(0.6, -0.64, 0.48)) % 2 == 1;
   }
 
   /// The barrier's force on vertex v at p (zero beyond its reach).

@@ -528,32 +528,28 @@ struct EquilibriumSolver::Impl {
   /// rode with the upper arm. The nearest sheet's test (pushOut's) misses it, and as the solve moves it on, the
   /// nearest sheet becomes the forearm's and it reads inside. Ray parity sees the part's whole volume: a vertex the
   /// part encloses is moved to the nearest point half the barrier distance in front of a face that the part does not
-  /// enclose (out through every sheet of the fold, not into the next one). Returns whether it moved.
-  bool outOfFold(int v, Eigen::MatrixX3d& x) {
+  /// enclose (out through every sheet of the fold, not into the next one).
+  void outOfFold(int v, Eigen::MatrixX3d& x) {
     const int k = pairStart[v];
-    if (k == pairStart[v + 1]) return false;
+    if (k == pairStart[v + 1]) return;
     const int c = pairCollider[k];
     const Eigen::Vector3d p = x.row(v).transpose();
-    if (lookedDistance(k) > kDeepest || !encloses(c, p)) return false;
+    if (lookedDistance(k) > kDeepest || !encloses(c, p)) return;
     const detail::ColliderState& part = colliders[c];
     std::vector<std::pair<double, Eigen::Vector3d>> exits;  // (distance, the point in front of the face)
     grids[c].near(p, kDeepest, seenFaces, [&](int f) {
-      const Eigen::Vector3d a = part.mesh.V.row(part.mesh.F(f, 0)), b = part.mesh.V.row(part.mesh.F(f, 1)),
-                            d = part.mesh.V.row(part.mesh.F(f, 2));
-      const Eigen::Vector3d bary = core::closestPointOnTriangle(p, a, b, d);
-      const Eigen::Vector3d q = bary(0) * a + bary(1) * b + bary(2) * d;
-      const double distance = (p - q).norm();
+      const detail::Closest hit = part.onFace(f, p);
+      const double distance = std::sqrt(hit.squared);
       if (distance < kDeepest)
-        exits.emplace_back(distance, q + 0.5 * options->barrierDistance * part.normals.row(f).transpose());
+        exits.emplace_back(distance, hit.point + 0.5 * options->barrierDistance * part.normals.row(f).transpose());
     });
     std::sort(exits.begin(), exits.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     for (size_t i = 0; i < exits.size() && i < kExitsTried; ++i)
       if (!encloses(c, exits[i].second)) {
         x.row(v) = exits[i].second.transpose();
         lookedDistance(k) = -kInfinity;  // look up again
-        return true;
+        return;
       }
-    return false;
   }
 
   /// Whether collider c's surface encloses p: each of three rays from p in different directions crosses it an odd

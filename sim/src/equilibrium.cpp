@@ -220,6 +220,8 @@ void EquilibriumOptions::validate() const {
                    "solver: friction slip must be positive, got " << frictionSlip);
   PIXELCLOTH_CHECK(forceTolerance > 0, "solver: force tolerance must be positive, got " << forceTolerance);
   PIXELCLOTH_CHECK(maxMove > 0 && std::isfinite(maxMove), "solver: max move must be positive, got " << maxMove);
+  PIXELCLOTH_CHECK(stepExpansions >= 0 && stepExpansions <= 10,
+                   "solver: step expansions must be in [0, 10], got " << stepExpansions);
 }
 
 namespace {
@@ -758,7 +760,7 @@ EquilibriumReport EquilibriumSolver::solve(Eigen::MatrixX3d& x, int maxIteration
   const double tolerance = forceTolerance > 0 ? forceTolerance : options_.forceTolerance;
   const Eigen::VectorXd reference = x.col(1);  // gravity measured from here: small energies, little round-off
   EquilibriumReport report;
-  Eigen::MatrixX3d gradient(n, 3), trialGradient(n, 3), trial(n, 3);
+  Eigen::MatrixX3d gradient(n, 3), trialGradient(n, 3), trial(n, 3), further(n, 3);
   double energy = s.evaluate(x, &reference, &gradient, true);
   if (!std::isfinite(energy)) {
     s.pushOut(x);
@@ -829,8 +831,20 @@ EquilibriumReport EquilibriumSolver::solve(Eigen::MatrixX3d& x, int maxIteration
         }
       }
     }
-    ++report.iterations;
     const bool full = accepted && alpha == 1.0;
+    if (full) {
+      // Longer steps along the same direction while the energy keeps falling (EquilibriumOptions::stepExpansions).
+      for (int expansion = 0; expansion < options_.stepExpansions && 2 * alpha * longest <= options_.maxMove;
+           ++expansion) {
+        further = x + 2 * alpha * move;
+        const double furtherEnergy = s.evaluate(further, &reference, nullptr, false, &x);
+        if (!(furtherEnergy < trialEnergy)) break;
+        alpha *= 2;
+        trialEnergy = furtherEnergy;
+        trial.swap(further);
+      }
+    }
+    ++report.iterations;
     damping = full ? std::max(kMinDamping, damping / 3) : std::min(kMaxDamping, damping * 10);
     if (!accepted && damping < kMaxDamping) {  // try again, more damped
       energy = s.evaluate(x, &reference, &gradient, true);

@@ -66,6 +66,7 @@ nlohmann::json simulationSettings(const SimulationOptions& s) {
             {"friction", q.friction},
             {"friction_slip_m", q.frictionSlip},
             {"force_tolerance_of_weight", q.forceTolerance},
+            {"step_expansions", q.stepExpansions},
             {"max_penetration_m", s.maxPenetration},
             {"step_degrees", n.stepDegrees},
             {"iterations_per_step", n.iterationsPerStep},

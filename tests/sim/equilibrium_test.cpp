@@ -102,6 +102,38 @@ TEST(Equilibrium, SheetDrapedOverASphereRestsOutsideItAtTheTolerance) {
   EXPECT_GT(solver.areaRatios(x).minCoeff(), 0.25);
 }
 
+TEST(Equilibrium, LongerStepsAlongANewtonDirectionThatKeepsLoweringTheEnergySettleInFewerIterations) {
+  // The sphere drape above, solved with the line search trying two and four times each full Newton step and with
+  // full steps only: both reach the tolerance outside the sphere, the first in fewer iterations.
+  const int n = 21;
+  const core::Mesh cloth = sheet(n, 0.5, 0.104);
+  const int centre = (n / 2) * n + n / 2;
+  auto drape = [&](int expansions, Eigen::MatrixX3d& x) {
+    EquilibriumOptions options;
+    options.stepExpansions = expansions;
+    EquilibriumSolver solver(cloth, {centre}, options);
+    solver.setPinTargets(cloth.V.row(centre));
+    solver.setColliders({sphere(0.1, 32, 64)}, std::vector<int>(cloth.numVertices(), 0));
+    x = cloth.V;
+    int iterations = 0;
+    EquilibriumReport report;
+    for (int step = 0; step < 5 && !report.converged; ++step) {
+      solver.beginStep(x);
+      report = solver.solve(x, 100);
+      iterations += report.iterations;
+    }
+    EXPECT_TRUE(report.converged) << expansions << " expansions: force ratio " << report.maxForceRatio;
+    EXPECT_GT(solver.distances(x).minCoeff(), 0);
+    return iterations;
+  };
+  Eigen::MatrixX3d expanded, plain;
+  const int fewer = drape(2, expanded), more = drape(0, plain);
+  EXPECT_LT(fewer, more);
+  // The same drape: the corners hang below the equator either way.
+  EXPECT_LT(expanded(0, 1), 0.0);
+  EXPECT_LT(plain(0, 1), 0.0);
+}
+
 TEST(Equilibrium, FrictionHoldsASheetOnASlopeThatItSlidesOffWithout) {
   // A small sheet on a sphere, off the top by 30 degrees: with mu = 0.9 > tan 30 it sticks near where it starts;
   // frictionless it slides down.
@@ -301,6 +333,9 @@ TEST(Equilibrium, RefusesDegeneratePatternsAndBadSettings) {
   core::Mesh cloth = sheet(3, 0.1, 0);
   EquilibriumOptions options;
   options.barrierDistance = 0;
+  EXPECT_THROW(EquilibriumSolver(cloth, {}, options), core::InputError);
+  options = {};
+  options.stepExpansions = -1;
   EXPECT_THROW(EquilibriumSolver(cloth, {}, options), core::InputError);
   cloth.UV.row(1) = cloth.UV.row(0);
   cloth.UV.row(3) = cloth.UV.row(0);

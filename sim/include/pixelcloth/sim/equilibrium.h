@@ -38,6 +38,11 @@ struct EquilibriumOptions {
   /// No vertex moves further than this in one Newton step (metres): a step is scaled down to it before the line
   /// search, so no vertex jumps through a body part.
   double maxMove = 0.02;
+  /// After a full Newton step the line search also tries 2, 4, ... 2^stepExpansions times that step (within
+  /// maxMove) and keeps the longest whose energy is lower than the shorter one's. The projected Hessian
+  /// overestimates the stiffness where cloth buckles or slides over the body (the projection drops the negative
+  /// curvature of compressed triangles and of the barrier over edges and corners), so a full step often stops short.
+  int stepExpansions = 2;
   void validate() const;
 };
 
@@ -57,9 +62,10 @@ struct EquilibriumReport {
 /// log barrier (Li et al. 2020) on the exact signed distance, and IPC's lagged smoothed friction. Each Newton step
 /// solves with the Hessian, every triangle's stretch Hessian projected to positive semi-definite in closed form from
 /// its singular values, by a sparse Cholesky factorisation (CHOLMOD, supernodal; symbolic analysis done once); then a
-/// backtracking line search on the total energy, on which a vertex inside its collider costs infinitely much.
-/// It stops when the largest net force on a vertex is below `forceTolerance` of its weight. Colliders stay put
-/// during a solve and move freely between calls. Only cloth-body contact, no self-collision.
+/// backtracking line search on the total energy, on which a vertex inside its collider costs infinitely much (after a
+/// full step it tries longer ones, `stepExpansions`). It stops when the largest net force on a vertex is below
+/// `forceTolerance` of its weight. Colliders stay put during a solve and move freely between calls. Only cloth-body
+/// contact, no self-collision.
 class EquilibriumSolver {
  public:
   /// `cloth`: faces F plus per-corner pattern coordinates UV / FUV (the rest shape); `pinned`: vertex indices held

@@ -21,15 +21,15 @@ void registerBench(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(10, 100000));
   verb->add_option("--probe-poses", options->probePoses,
-                   "Poses the equilibrium probe simulates on each mesh and continuation path")
+                   "Poses the equilibrium probe simulates on each mesh, continuation path, garment and body")
       ->capture_default_str()
       ->check(CLI::Range(2, 10000));
   auto only = std::make_shared<std::string>("all");
   verb->add_option("--only", *only,
                    "Which figures: all, procedural (body to simulation and files), learn, stitch (the PCA filter), "
                    "motion (a clip to an animated garment), equilibrium (the Newton solver, a few minutes) or "
-                   "equilibrium_probe (the Newton solver on unseen poses, four meshes and two continuation paths: "
-                   "tens of minutes; not part of all)")
+                   "equilibrium_probe (the Newton solver on unseen poses, four meshes, two continuation paths, an "
+                   "imported garment and an imported body: tens of minutes; not part of all)")
       ->capture_default_str()
       ->check(CLI::IsMember({"all", "procedural", "learn", "stitch", "motion", "equilibrium", "equilibrium_probe"}));
   verb->callback([options, only] {

@@ -276,15 +276,9 @@ DemoSeams runDemoSeams(const fs::path& report, const DemoPlan& plan) {
   return out;
 }
 
-OwnGarment runOwnGarment(const fs::path& folder, const body::Body& body, const fs::path& bodyFolder,
-                         const DemoPlan& plan) {
-  OwnGarment out;
-  out.folder = folder;
-  out.garmentFolder = folder / "garment";
-  fs::remove_all(folder);
-  PIXELCLOTH_INFO("demo: a T-shirt OBJ as other programs write it, imported without a cage file");
-  // The file a user brings: each sleeve one tube-shaped UV island cut along the underarm (its vertices hold two UVs
-  // there), Z up, in centimetres, its origin 90 cm below and 5 cm behind the body's.
+garment::ObjImportOptions writeOwnShirtObj(const fs::path& obj) {
+  // Each sleeve one tube-shaped UV island cut along the underarm (its vertices hold two UVs there), Z up, in
+  // centimetres, its origin 90 cm below and 5 cm behind the body's.
   garment::TShirtOptions shirt;
   shirt.targetVertices = 2000;
   garment::ObjExportOptions file;
@@ -293,17 +287,28 @@ OwnGarment runOwnGarment(const fs::path& folder, const body::Body& body, const f
   file.scale = 0.01;
   file.translate = Eigen::Vector3d(0, 0.9, 0.05);
   file.shuffleSeed = 7;
-  fs::create_directories(folder);
-  garment::exportGarmentObj(garment::makeTShirt(shirt), folder / "shirt.obj", file);
-  const core::Mesh raw = core::readMesh(folder / "shirt.obj");
-  out.fileVertices = raw.numVertices();
-  out.fileUvs = static_cast<int>(raw.UV.rows());
-  out.fileFaces = raw.numFaces();
+  garment::exportGarmentObj(garment::makeTShirt(shirt), obj, file);
   garment::ObjImportOptions placement;
   placement.name = "my_shirt";
   placement.up = 'z';
   placement.scale = 0.01;
   placement.translate = file.translate;
+  return placement;
+}
+
+OwnGarment runOwnGarment(const fs::path& folder, const body::Body& body, const fs::path& bodyFolder,
+                         const DemoPlan& plan) {
+  OwnGarment out;
+  out.folder = folder;
+  out.garmentFolder = folder / "garment";
+  fs::remove_all(folder);
+  PIXELCLOTH_INFO("demo: a T-shirt OBJ as other programs write it, imported without a cage file");
+  fs::create_directories(folder);
+  const garment::ObjImportOptions placement = writeOwnShirtObj(folder / "shirt.obj");
+  const core::Mesh raw = core::readMesh(folder / "shirt.obj");
+  out.fileVertices = raw.numVertices();
+  out.fileUvs = static_cast<int>(raw.UV.rows());
+  out.fileFaces = raw.numFaces();
   out.garment = garment::importGarmentObj(folder / "shirt.obj", placement, &out.import);
   out.piecePatches = static_cast<int>(patches::garmentPatches(out.garment).size());
   // `garment --import ... --fit-to BODY`: the body loops, centre lines and splits that give it patches.

@@ -13,7 +13,8 @@ namespace pixelcloth::bench {
 
 /// The suites: body to simulation and files; the decoders at the paper's width; the PCA filter's fit.
 /// The Newton equilibrium solver's T-shirt figures (a few minutes) are a suite of their own, and its probe over unseen
-/// poses, meshes and continuation paths (tens of minutes) another, not part of "all".
+/// poses, meshes, continuation paths, an imported garment and an imported body (tens of minutes) another, not part
+/// of "all".
 enum class Suite { Procedural, Learn, Stitch, Motion, Equilibrium, EquilibriumProbe };
 /// "procedural", "learn", "stitch", "motion", "equilibrium", "equilibrium_probe"
 const char* suiteName(Suite suite);
@@ -26,7 +27,7 @@ using FigureSink = std::function<void(const nlohmann::ordered_json& figure)>;
 struct SuiteOptions {
   int repeats = 5;        ///< runs per figure, the median reported, [1, 100]
   int epochShirts = 400;  ///< shirts simulated for learn.epoch_seconds_w025 (80% train), [10, 100000]
-  int probePoses = 32;    ///< poses the equilibrium probe simulates on each mesh and path, [2, 10000]
+  int probePoses = 32;    ///< poses the equilibrium probe simulates per mesh, path, garment and body, [2, 10000]
 };
 
 /// Measures `suite`, handing each figure to `sink`. Notes on what was measured go to stderr.

@@ -144,6 +144,12 @@ struct DemoMotion {
 };
 DemoMotion runDemoMotion(const std::filesystem::path& report, const DemoPlan& plan);
 
+/// Writes the T-shirt OBJ a user brings, as other cloth programs write theirs: 2000 vertices, each sleeve one
+/// tube-shaped UV island cut along the underarm (several UVs per vertex there), Z up, centimetres, its origin 90 cm
+/// below and 5 cm behind the body's, vertices shuffled. Returns the import options that read it back into place
+/// (garment::importGarmentObj), named "my_shirt".
+garment::ObjImportOptions writeOwnShirtObj(const std::filesystem::path& obj);
+
 /// A T-shirt OBJ written the way other cloth programs write theirs (tube sleeves with several UVs per vertex, Z up,
 /// centimetres, another origin), imported without a cage file and taken through the pipeline as a garment folder in
 /// `folder`: fitted to the body, dressed, simulated, rebuilt from markers, per-patch decoders trained and evaluated.

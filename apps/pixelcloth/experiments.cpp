@@ -14,7 +14,7 @@ namespace pixelcloth::apps {
 
 namespace {
 struct ExperimentsArgs {
-  std::string scale = "small", out;
+  std::string scale = "small", out, solver = "pd";
   int threads = 0;
 };
 
@@ -22,6 +22,7 @@ void runExperiments(const ExperimentsArgs& args) {
   const eval::Scale scale = eval::scaleFromName(args.scale, "experiments --scale");
   eval::ExperimentPlan plan = eval::ExperimentPlan::ofScale(scale);
   plan.threads = args.threads;
+  plan.solver = sim::parseSolverKind(args.solver, "experiments --solver");
   const std::filesystem::path out =
       args.out.empty() ? std::filesystem::path("experiments") / args.scale : std::filesystem::path(args.out);
   core::checkOutputFolder(out);
@@ -44,6 +45,11 @@ void registerExperiments(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"small", "full"}));
   verb->add_option("--out", args->out, "Output folder (default: experiments/SCALE)");
+  verb->add_option("--solver", args->solver,
+                   "The datasets' simulator: 'pd' (projective dynamics, fixed schedule) or 'newton' (run to static "
+                   "equilibrium; about 8 s a T-shirt pose on one core)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"pd", "newton"}));
   verb->add_option("--threads", args->threads, "Worker threads (0: one per core)")
       ->capture_default_str()
       ->check(CLI::Range(0, 256));

@@ -60,17 +60,23 @@ class Run {
     options.seed = seed;
     options.threads = threads_;
     options.mannequinEdge = results_.plan.mannequinEdge;
+    options.simulation.kind = results_.plan.solver;
     const fs::path folder = out_ / "data" / name;
-    // A finished dataset of these settings is kept as it is; anything else is generated, resumed or refused by
-    // sim::generateDataset (which rebuilds the body and dressing to check them against the folder's).
+    // A finished dataset of this garment, size, seed and solver is kept as it is; anything else is
+    // generated, resumed or refused by sim::generateDataset (which rebuilds the body and dressing to check them
+    // against the folder's).
     std::error_code ec;
     const bool finished = fs::is_regular_file(folder / "manifest.json", ec) && [&] {
       const data::DatasetSettings s = data::readDatasetInfo(folder).settings;
-      return s.garment == garment && s.count == count && s.seed == seed && s.rows() == count;
+      return s.garment == garment && s.count == count && s.seed == seed && s.rows() == count &&
+             s.generator.value("solver", "") == sim::simulationSettings(options.simulation)["solver"];
     }();
     if (!finished) sim::generateDataset(folder, options);
+    const std::string solver = results_.plan.solver == sim::SolverKind::ProjectiveDynamics
+                                   ? ""
+                                   : std::string(" --solver ") + sim::solverKindName(results_.plan.solver);
     command("pixelcloth generate --count " + std::to_string(count) + " --seed " + std::to_string(seed) + " --garment " +
-            garment + " --out data/" + name);
+            garment + solver + " --out data/" + name);
     return figuresOf(folder);
   }
 

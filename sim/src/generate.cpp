@@ -49,6 +49,36 @@ body::Body makeBody(const GenerateOptions& options, nlohmann::json& description)
   return body;
 }
 
+/// Runs job(simulator, k) for every k in [0, count) on `threads` threads, the calling one with `first`, each other
+/// with its own simulator built from `first`'s settled drape (so a result does not depend on the thread). The first
+/// exception stops the others and is rethrown.
+void forEachOnSimulators(GarmentSimulator& first, const body::Body& body, const garment::Garment& garment,
+                         const cage::Dressing& dressing, const SimulationOptions& options, int count, int threads,
+                         const std::function<void(GarmentSimulator&, int)>& job) {
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failureMutex;
+  auto work = [&](GarmentSimulator& simulator) {
+    try {
+      for (int k = next++; k < count; k = next++) job(simulator, k);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(failureMutex);
+      if (!failure) failure = std::current_exception();
+      next = count;
+    }
+  };
+  std::vector<std::unique_ptr<GarmentSimulator>> simulators;
+  for (int t = 1; t < threads; ++t)
+    simulators.push_back(std::make_unique<GarmentSimulator>(body, garment, dressing, options, &first.restDrape()));
+  std::vector<std::thread> workers;
+  for (auto& simulator : simulators) workers.emplace_back(work, std::ref(*simulator));
+  work(first);
+  for (std::thread& worker : workers) worker.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace
+
 nlohmann::json simulationSettings(const SimulationOptions& s) {
   if (s.kind == SolverKind::Newton) {
     const NewtonSchedule& n = s.newton;
@@ -102,36 +132,6 @@ nlohmann::json simulationSettings(const SimulationOptions& s) {
           {"pinned_vertices", s.pinned.size()},
           {"pose_sampler", "appendix: half-normal centre line, azimuth / sine-altitude / twist arms, pruned"}};
 }
-
-/// Runs job(simulator, k) for every k in [0, count) on `threads` threads, the calling one with `first`, each other
-/// with its own simulator built from `first`'s settled drape (so a result does not depend on the thread). The first
-/// exception stops the others and is rethrown.
-void forEachOnSimulators(GarmentSimulator& first, const body::Body& body, const garment::Garment& garment,
-                         const cage::Dressing& dressing, const SimulationOptions& options, int count, int threads,
-                         const std::function<void(GarmentSimulator&, int)>& job) {
-  std::atomic<int> next{0};
-  std::exception_ptr failure;
-  std::mutex failureMutex;
-  auto work = [&](GarmentSimulator& simulator) {
-    try {
-      for (int k = next++; k < count; k = next++) job(simulator, k);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(failureMutex);
-      if (!failure) failure = std::current_exception();
-      next = count;
-    }
-  };
-  std::vector<std::unique_ptr<GarmentSimulator>> simulators;
-  for (int t = 1; t < threads; ++t)
-    simulators.push_back(std::make_unique<GarmentSimulator>(body, garment, dressing, options, &first.restDrape()));
-  std::vector<std::thread> workers;
-  for (auto& simulator : simulators) workers.emplace_back(work, std::ref(*simulator));
-  work(first);
-  for (std::thread& worker : workers) worker.join();
-  if (failure) std::rethrow_exception(failure);
-}
-
-}  // namespace
 
 void GenerateOptions::validate() const {
   PIXELCLOTH_CHECK(!garment.empty(), "generate: --garment is empty; expected a template name or a garment folder");

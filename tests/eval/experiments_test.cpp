@@ -87,6 +87,22 @@ TEST(Experiments, ATinyPlanRunsEveryExperimentAndItsReportPutsThePapersFiguresBe
   const pe::ExperimentResults again = pe::runExperiments(tinyPlan(), out);
   EXPECT_EQ(again.model("whole_l1").testCm, results.model("whole_l1").testCm);
   EXPECT_EQ(again.model("whole_l1").seconds, 0.0);
+
+  // Data of another solver is not taken for this one's: the folder's T-shirts are refused, naming the settings.
+  pe::ExperimentPlan newton = tinyPlan();
+  newton.solver = pixelcloth::sim::SolverKind::Newton;
+  EXPECT_NE(inputErrorOf([&] { pe::runExperiments(newton, out); }).find("made with another 'settings'"),
+            std::string::npos);
+  // A report of Newton data says so, and its command line carries the solver.
+  pe::ExperimentResults equilibrium = results;
+  equilibrium.plan.solver = pixelcloth::sim::SolverKind::Newton;
+  equilibrium.scale = "full";
+  const fs::path report = pixelcloth::testing::freshDir("newton_report");
+  pixelcloth::viz::writeExperimentReport(equilibrium, report);
+  const std::string newtonMd = pixelcloth::core::readTextFile(report / "results.md");
+  EXPECT_NE(newtonMd.find("`pixelcloth experiments --scale full --solver newton`"), std::string::npos);
+  EXPECT_NE(newtonMd.find("static equilibrium"), std::string::npos);
+  EXPECT_NE(md.find("projective dynamics"), std::string::npos);
 }
 
 TEST(Experiments, BadPlansAreRefusedNamingTheField) {

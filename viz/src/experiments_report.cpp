@@ -90,15 +90,20 @@ void writeExperimentReport(const eval::ExperimentResults& r, const fs::path& out
   core::writePng(figures / "body_shapes.png", renderLineChart(chart));
 
   const eval::ExperimentPlan& p = r.plan;
+  const bool newton = p.solver == sim::SolverKind::Newton;
+  const std::string solverFlag = newton ? " --solver newton" : "";
+  const char* simulatedBy = newton ? "Both datasets simulated to static equilibrium (Newton, docs/simulation.md)."
+                                   : "Both datasets simulated by projective dynamics' fixed schedule.";
   std::ostringstream md;
   md << "# The paper's experiments on pixelcloth's data (" << r.scale << " scale)\n\n"
      << "Made by "
      << (r.scale == "custom" ? std::string("a custom plan of eval::runExperiments")
-                             : "`pixelcloth experiments --scale " + r.scale + "`")
-     << " in " << cm(r.seconds, 0) << " s. T-shirts: " << r.tshirt.samples << " samples (" << r.tshirt.accepted
-     << " accepted of " << r.tshirt.simulated << " simulated poses; " << r.tshirt.train << " train, "
-     << r.tshirt.regularisation << " regularisation, " << r.tshirt.test << " test). Neckties: " << r.necktie.samples
-     << " (" << r.necktie.train << " train, " << r.necktie.test << " test).\n\n"
+                             : "`pixelcloth experiments --scale " + r.scale + solverFlag + "`")
+     << " in " << cm(r.seconds, 0) << " s. " << simulatedBy << " T-shirts: " << r.tshirt.samples << " samples ("
+     << r.tshirt.accepted << " accepted of " << r.tshirt.simulated << " simulated poses; " << r.tshirt.train
+     << " train, " << r.tshirt.regularisation << " regularisation, " << r.tshirt.test
+     << " test). Neckties: " << r.necktie.samples << " (" << r.necktie.train << " train, " << r.necktie.test
+     << " test).\n\n"
      << "- whole-garment decoder (sections 2 and 3): " << budget(p.whole) << "\n"
      << "- pose-only patch decoders (sections 2, 4 and 8): " << budget(p.patches) << "\n"
      << "- residual patch decoders (section 8): " << budget(p.residual) << "\n"

@@ -19,6 +19,7 @@
 
 #include "pixelcloth/data/dataset.h"
 #include "pixelcloth/learn/train.h"
+#include "pixelcloth/sim/garment_sim.h"
 #include "pixelcloth/stitch/evaluate.h"
 #include "pixelcloth/stitch/pca_filter.h"
 
@@ -62,6 +63,8 @@ struct ExperimentPlan {
   int pcaComponents = 128;          ///< Table 2's principal components (at most the train samples)
   std::vector<BodyVariant> bodies;  ///< the bodies of the shape and skinning experiments
   int threads = 0;                  ///< 0: one per core
+  /// The simulator of both datasets: projective dynamics' fixed schedule, or Newton run to static equilibrium.
+  sim::SolverKind solver = sim::SolverKind::ProjectiveDynamics;
   std::uint64_t seed = 1;           ///< the T-shirt dataset's; the necktie's is seed + 1
   double mannequinEdge = 0.0075;    ///< the mannequin's triangle size, metres (tests use coarser bodies)
 

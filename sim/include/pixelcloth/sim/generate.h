@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "pixelcloth/body/body.h"
@@ -31,6 +32,10 @@ struct GenerateOptions {
   SimulationOptions simulation;
   void validate() const;
 };
+
+/// The solver settings a dataset made with `options` records (its manifest's "settings"): which solver, its material,
+/// contact and stopping settings, the continuation schedule and the acceptance test.
+nlohmann::json simulationSettings(const SimulationOptions& options);
 
 /// The pose drawn for sample `index` at its `attempt`-th try: a PoseSampler seeded from (seed, index, attempt), so a
 /// sample's pose does not depend on which shard or thread makes it. Only the joints that drive the garment move

@@ -42,6 +42,11 @@ void runDemo(const DemoArgs& args) {
     tshirt = eval::simulateDataset(out / "dataset_tshirt", out / "body", "tshirt", plan.tshirtSamples, plan.seed);
   });
   viz::demoTShirtDataset(report, body, tshirt);
+  eval::EquilibriumDemo equilibrium;
+  report.step("static equilibrium: the first T-shirt poses run to equilibrium by the Newton solver", [&] {
+    equilibrium = eval::runEquilibriumDemo(out / "dataset_tshirt_newton", out / "body", tshirt.folder, plan);
+  });
+  viz::demoEquilibrium(report, body, equilibrium);
   eval::DemoReconstruction reconstruction;
   report.step("reconstruction from markers: the T-shirt samples rebuilt by every method",
               [&] { reconstruction = eval::reconstructDemoDataset(out / "dataset_tshirt", out / "reconstruction"); });
@@ -103,6 +108,10 @@ void registerDemo(CLI::App& app) {
       ->check(CLI::Range(1, 2000));
   verb->add_option("--own-garment-samples", args->plan.ownGarmentSamples,
                    "Simulated samples of the imported T-shirt OBJ (the own-garment section)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 2000));
+  verb->add_option("--equilibrium-samples", args->plan.equilibriumSamples,
+                   "The T-shirt dataset's first poses run to static equilibrium by the Newton solver")
       ->capture_default_str()
       ->check(CLI::Range(1, 2000));
   verb->add_option("--learning-epochs", args->plan.learningEpochs, "Epochs of each learned model")

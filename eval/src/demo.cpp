@@ -80,18 +80,30 @@ std::vector<DressedGarment> dressTemplates(const body::Body& body) {
 }
 
 SimulatedDataset simulateDataset(const fs::path& folder, const fs::path& bodyFolder, const std::string& garment,
-                                 int count, std::uint64_t seed) {
+                                 int count, std::uint64_t seed, sim::SolverKind solver) {
   fs::remove_all(folder);
   sim::GenerateOptions generate;
   generate.garment = garment;
   generate.count = count;
   generate.seed = seed;
   generate.bodyFolder = bodyFolder;
+  generate.simulation.kind = solver;
   SimulatedDataset out;
   out.folder = folder;
   out.seconds = sim::generateDataset(folder, generate).seconds;
   out.check = data::checkDataset(folder);
   out.info = data::readDatasetInfo(folder);
+  return out;
+}
+
+EquilibriumDemo runEquilibriumDemo(const fs::path& folder, const fs::path& bodyFolder, const fs::path& projective,
+                                   const DemoPlan& plan) {
+  EquilibriumDemo out;
+  out.projective = projective;
+  // Both datasets draw sample i's pose from (seed, i, attempt): the poses that neither solver rejected are the same.
+  out.newton =
+      simulateDataset(folder, bodyFolder, "tshirt", plan.equilibriumSamples, plan.seed, sim::SolverKind::Newton);
+  out.comparison = sim::compareDatasets(data::openDataset(projective), data::openDataset(folder));
   return out;
 }
 

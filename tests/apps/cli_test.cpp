@@ -107,7 +107,7 @@ TEST_F(CliTest, BenchPrintsOnlyJsonLines) {
 TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
   fs::path out = dir("out") / "report";
   CliRun run = runPixelcloth({"demo", "--out", out.string(), "--poses", "2", "--filter-poses", "16", "--tshirt-samples",
-                              "10", "--own-garment-samples", "8"});
+                              "10", "--own-garment-samples", "8", "--equilibrium-samples", "2"});
   ASSERT_EQ(run.status, 0) << run;
   ASSERT_TRUE(fs::is_regular_file(out / "index.html")) << listing(filesUnder(out));
   EXPECT_NO_THROW(nlohmann::json::parse(readFile(out / "report.json")));
@@ -130,6 +130,17 @@ TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
   EXPECT_GE(fitted.at("cage_lines").size(), 10u);
   EXPECT_TRUE(fs::is_regular_file(out / "own_garment" / "model_patch" / "patch_00" / "model.json"))
       << listing(filesUnder(out / "own_garment" / "model_patch"));
+  // The first poses at static equilibrium, beside projective dynamics' samples of them.
+  EXPECT_NE(html.find("Static equilibrium"), std::string::npos);
+  const nlohmann::json equilibrium = nlohmann::json::parse(readFile(out / "report.json"))["equilibrium"];
+  EXPECT_EQ(equilibrium["samples"], 2);
+  EXPECT_LT(equilibrium["stats"]["max_residual_force_ratio"].get<double>(), 0.01);
+  EXPECT_EQ(nlohmann::json::parse(readFile(out / "dataset_tshirt_newton" / "manifest.json"))["settings"]["solver"],
+            "newton");
+  if (equilibrium["pairs"].get<int>() > 0) {
+    EXPECT_GT(equilibrium["mean_distance_cm"].get<double>(), 0);
+    EXPECT_TRUE(isPng(out / "dataset_tshirt_newton" / "against_projective.png"));
+  }
   // The demo's own motion went out as a GLB, came back in through assimp unchanged, and was predicted frame by frame.
   EXPECT_NE(html.find("Motion"), std::string::npos);
   for (const char* file : {"motion/clip.glb", "motion/imported/poses.npy", "motion/predicted/animation.glb",
@@ -155,7 +166,7 @@ TEST_F(CliTest, DemoWritesReportWhosePicturesExist) {
   // Run again into the same folder, as a user does after pulling: the datasets are made afresh, so the models the first
   // run left were trained on other samples; the demo retrains them instead of refusing to resume.
   run = runPixelcloth({"demo", "--out", out.string(), "--poses", "2", "--filter-poses", "16", "--tshirt-samples", "10",
-                       "--own-garment-samples", "8"});
+                       "--own-garment-samples", "8", "--equilibrium-samples", "2"});
   ASSERT_EQ(run.status, 0) << run;
   EXPECT_TRUE(noTemporaries(out));
 }

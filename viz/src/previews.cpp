@@ -104,11 +104,15 @@ RgbImage renderPosedBody(const Body& body, const Pose& pose, const View& view, b
   return picture;
 }
 
-RgbImage renderGarmentOnBody(const Garment& garment, const Body* body, int panelSize) {
+RgbImage renderGarmentOnBody(const Garment& garment, const Body* body, int panelSize,
+                             const Eigen::MatrixX3d* vertexColors) {
   RenderMesh cloth{garment.mesh.V, garment.mesh.F, {}, {}, {0.5, 0.5, 0.5}};
-  cloth.faceColors.resize(garment.mesh.numFaces(), 3);
-  for (int f = 0; f < garment.mesh.numFaces(); ++f) {
-    cloth.faceColors.row(f) = (0.35 + 0.65 * toUnit(paletteColor(garment.facePanel[f])).array()).matrix().transpose();
+  if (vertexColors) {
+    cloth.vertexColors = *vertexColors;
+  } else {
+    cloth.faceColors.resize(garment.mesh.numFaces(), 3);
+    for (int f = 0; f < garment.mesh.numFaces(); ++f)
+      cloth.faceColors.row(f) = (0.35 + 0.65 * toUnit(paletteColor(garment.facePanel[f])).array()).matrix().transpose();
   }
   std::vector<RenderMesh> meshes = {cloth};
   if (body) meshes.push_back(RenderMesh{body->mesh.V, body->mesh.F, {}, {}, {kSkin[0], kSkin[1], kSkin[2]}});

@@ -22,6 +22,7 @@
 #include "pixelcloth/patches/body_fit.h"
 #include "pixelcloth/recon/base.h"
 #include "pixelcloth/recon/reconstruct.h"
+#include "pixelcloth/sim/shape_comparison.h"
 #include "pixelcloth/stitch/evaluate.h"
 #include "pixelcloth/stitch/gan.h"
 
@@ -36,6 +37,7 @@ struct DemoPlan {
   int learningEpochs = 8;      ///< epochs of each learned model on the T-shirt dataset
   int necktieEpochs = 60;      ///< epochs of the necktie decoder
   int ownGarmentSamples = 20;  ///< the simulated dataset of the imported garment
+  int equilibriumSamples = 8;  ///< the T-shirt dataset's first poses run to static equilibrium (Newton)
   std::uint64_t seed = 1;
 };
 
@@ -58,7 +60,19 @@ struct SimulatedDataset {
 /// `count` samples of `garment` (a template name or a garment folder) simulated on the body of `bodyFolder` into
 /// `folder` (emptied first), then checked.
 SimulatedDataset simulateDataset(const std::filesystem::path& folder, const std::filesystem::path& bodyFolder,
-                                 const std::string& garment, int count, std::uint64_t seed);
+                                 const std::string& garment, int count, std::uint64_t seed,
+                                 sim::SolverKind solver = sim::SolverKind::ProjectiveDynamics);
+
+/// The T-shirt dataset's first poses run to static equilibrium by the Newton solver (`generate --solver newton`, the
+/// same seed) into `folder`, and projective dynamics' samples of the same poses (the dataset at `projective`)
+/// compared with them through the pattern, pose by pose.
+struct EquilibriumDemo {
+  SimulatedDataset newton;
+  sim::ShapeComparison comparison;  ///< a: projective dynamics' samples, b: the equilibria
+  std::filesystem::path projective;
+};
+EquilibriumDemo runEquilibriumDemo(const std::filesystem::path& folder, const std::filesystem::path& bodyFolder,
+                                   const std::filesystem::path& projective, const DemoPlan& plan);
 
 /// The appendix sampler's draws, pruned (arms in the torso) and simulated on the T-shirt: the poses at each stage and
 /// the tally of a dataset manifest.

@@ -57,6 +57,10 @@ void demoReconstruction(Report& report, const body::Body& body, const eval::Demo
 /// dressing, a prediction beside ground truth (own_garment/).
 void demoOwnGarment(Report& report, const body::Body& body, const eval::OwnGarment& own);
 
+/// The T-shirt's first poses at static equilibrium (Newton) beside projective dynamics' samples of them: the solver's
+/// figures and the three poses where the two differ most, coloured by the distance (dataset_tshirt_newton/).
+void demoEquilibrium(Report& report, const body::Body& body, const eval::EquilibriumDemo& made);
+
 /// The simulated necktie dataset: a contact sheet (dataset_necktie/contact_sheet.png) and its figures.
 void demoNecktieDataset(Report& report, const body::Body& body, const eval::SimulatedDataset& made);
 

@@ -24,8 +24,10 @@ core::RgbImage renderPosedBody(const body::Body& body, const body::Pose& pose, c
 /// Pictures laid out in a grid of `columns`, white gaps of `gap` pixels.
 core::RgbImage contactSheet(const std::vector<core::RgbImage>& pictures, int columns, int gap = 8);
 
-/// The garment's 3D rest placement over the body (front and back views, panels coloured).
-core::RgbImage renderGarmentOnBody(const garment::Garment& garment, const body::Body* body, int panelSize = 480);
+/// The garment's 3D placement over the body (front, three-quarter and back views), its panels coloured, or each vertex
+/// by `vertexColors` (#V x 3 in [0, 1]) when given.
+core::RgbImage renderGarmentOnBody(const garment::Garment& garment, const body::Body* body, int panelSize = 480,
+                                   const Eigen::MatrixX3d* vertexColors = nullptr);
 
 /// The colour given to joint j in weight pictures (RGB in [0, 1]).
 Eigen::Vector3d jointColor(int joint);

@@ -11,11 +11,14 @@
 #include "pixelcloth/cage/garment_cage.h"
 #include "pixelcloth/core/atomic_file.h"
 #include "pixelcloth/core/error.h"
+#include "pixelcloth/core/json_io.h"
 #include "pixelcloth/core/log.h"
 #include "pixelcloth/core/run_folder.h"
 #include "pixelcloth/data/face_statistics.h"
+#include "pixelcloth/sim/generate.h"
 #include "pixelcloth/sim/shape_comparison.h"
 #include "pixelcloth/viz/pictures.h"
+#include "pixelcloth/viz/pose_figures.h"
 #include "verbs.h"
 
 namespace pixelcloth::apps {
@@ -64,11 +67,38 @@ void runStats(const DatasetArgs& args) {
   core::checkRunFolder(args.out, {"", {}, "a dataset's face statistics"});
   const data::Dataset dataset = data::openDataset(datasetFolder(args.folder));
   const data::FaceStatistics stats = data::faceStatistics(dataset);
-  viz::writeFaceStatistics(data::datasetGarment(dataset.info), stats, dataset.info.folder, args.out);
+  const garment::Garment garment = data::datasetGarment(dataset.info);
+  viz::writeFaceStatistics(garment, stats, dataset.info.folder, args.out);
   std::cout << "face statistics of " << stats.samples << " samples: area ratio " << stats.minAreaRatio.minCoeff()
             << " to " << stats.maxAreaRatio.maxCoeff() << ", " << stats.samplesSelfIntersecting
             << " samples with the garment passing through itself -> " << args.out
             << "/{area_distortion.png, self_intersection.png, face_statistics.json}\n";
+  if (dataset.info.settings.source != "simulated") return;
+  // The joint angles before and after filtering: the sampler's draws for these samples made again from the seed.
+  const sim::SampledPoses poses =
+      sim::datasetPoseDraws(dataset, data::loadDatasetBody(dataset.info.folder), garment.traits);
+  core::writePng(
+      std::filesystem::path(args.out) / "joint_angles.png",
+      viz::renderJointHistograms({{"drawn", poses.drawn, {175, 175, 175}},
+                                  {"simulated (after pruning arms in the torso)", poses.simulated, {140, 185, 235}},
+                                  {"kept (the simulation's acceptance test)", poses.kept, {30, 80, 190}}}));
+  auto bin = [](const viz::JointBinLoss& loss) {
+    return nlohmann::json{{"joint", loss.joint},
+                          {"axis", loss.axis},
+                          {"lower_degrees", loss.lowerDegrees},
+                          {"upper_degrees", loss.upperDegrees},
+                          {"before", loss.before},
+                          {"after", loss.after},
+                          {"kept_fraction", loss.keptFraction()}};
+  };
+  core::writeJson(std::filesystem::path(args.out) / "pose_filtering.json",
+                  nlohmann::json{{"drawn", poses.drawn.size()},
+                                 {"simulated", poses.simulated.size()},
+                                 {"kept", poses.kept.size()},
+                                 {"worst_bin_simulation", bin(viz::worstJointBin(poses.simulated, poses.kept))},
+                                 {"worst_bin_overall", bin(viz::worstJointBin(poses.drawn, poses.kept))}});
+  std::cout << "joint angles: " << poses.drawn.size() << " poses drawn, " << poses.simulated.size() << " simulated, "
+            << poses.kept.size() << " kept -> " << args.out << "/{joint_angles.png, pose_filtering.json}\n";
 }
 
 void runCompare(const DatasetArgs& args) {
@@ -197,7 +227,9 @@ void registerDataset(CLI::App& app) {
       "stats",
       "The paper's appendix statistics as pictures: per garment face, the smallest and largest ratio of its area to "
       "its pattern area over the samples (area_distortion.png) and the fraction of samples in which it passes "
-      "through the garment itself (self_intersection.png), with the numbers in face_statistics.json");
+      "through the garment itself (self_intersection.png), with the numbers in face_statistics.json; for a simulated "
+      "dataset also the joint-angle histograms of the sampler's draws, of the poses simulated and of those kept "
+      "(joint_angles.png, pose_filtering.json)");
   stats->add_option("folder", args->folder, "Dataset folder")->required();
   stats->add_option("--out", args->out, "Output folder for the pictures")->required();
   stats->callback([args] { runStats(*args); });

@@ -145,16 +145,66 @@ void GenerateOptions::validate() const {
   simulation.validate();
 }
 
-body::Pose samplePose(const body::Body& body, const garment::GarmentTraits& traits, std::uint64_t seed, int index,
-                      int attempt, int* pruned) {
+namespace {
+
+/// The sampler of sample `index`'s `attempt`-th try.
+PoseSamplerOptions samplerOptions(const garment::GarmentTraits& traits, std::uint64_t seed, int index, int attempt) {
   PoseSamplerOptions options;
   options.seed = mix(mix(seed) ^ mix(static_cast<std::uint64_t>(index) * 1000003ULL + attempt));
   options.prune = traits.armsDrive();  // a garment the arms do not move: arm pruning would not matter
-  PoseSampler sampler(body, options);
-  body::Pose pose = sampler.next();
-  if (pruned) *pruned = sampler.stats().rejectedArmInsideTorso;
+  return options;
+}
+
+/// The joints the garment does not follow held at rest.
+body::Pose heldAtRest(body::Pose pose, const garment::GarmentTraits& traits) {
   for (size_t j = traits.poseJoints; j < pose.rotations.size(); ++j) pose.rotations[j].setIdentity();
   return pose;
+}
+
+}  // namespace
+
+body::Pose samplePose(const body::Body& body, const garment::GarmentTraits& traits, std::uint64_t seed, int index,
+                      int attempt, int* pruned) {
+  PoseSampler sampler(body, samplerOptions(traits, seed, index, attempt));
+  const body::Pose pose = sampler.next();
+  if (pruned) *pruned = sampler.stats().rejectedArmInsideTorso;
+  return heldAtRest(pose, traits);
+}
+
+SampledPoses datasetPoseDraws(const data::Dataset& dataset, const body::Body& body,
+                              const garment::GarmentTraits& traits, int maxAttempts) {
+  const data::DatasetSettings& settings = dataset.info.settings;
+  PIXELCLOTH_CHECK(settings.source == "simulated", dataset.info.folder.string()
+                                                       << ": its samples were not simulated by pixelcloth ("
+                                                       << settings.source << "): no sampler draws to make again");
+  SampledPoses out;
+  for (int row = 0; row < dataset.rows(); ++row) {
+    const int index = settings.first() + row;
+    const Eigen::VectorXf held = dataset.pose(row);
+    bool found = false;
+    for (int attempt = 0; attempt < maxAttempts && !found; ++attempt) {
+      // As samplePose draws: raw draws until one passes the arm prune (PoseSampler::next).
+      const PoseSamplerOptions options = samplerOptions(traits, settings.seed, index, attempt);
+      PoseSampler sampler(body, options);
+      for (int draw = 0; draw < options.maxAttempts; ++draw) {
+        const body::Pose raw = sampler.draw();
+        const body::Pose pose = heldAtRest(raw, traits);
+        out.drawn.push_back(pose);
+        if (options.prune && sampler.armInsideTorso(raw)) continue;
+        out.simulated.push_back(pose);
+        if (pose.toVector().head(held.size()) == held) {
+          out.kept.push_back(pose);
+          found = true;
+        }
+        break;
+      }
+    }
+    PIXELCLOTH_CHECK(found, dataset.info.folder.string()
+                                << ": sample " << index << "'s pose is none of the sampler's first " << maxAttempts
+                                << " attempts from seed " << settings.seed
+                                << ": made by another seed or sampler than pixelcloth generate's");
+  }
+  return out;
 }
 
 GenerateReport generateDataset(const std::filesystem::path& out, const GenerateOptions& given) {

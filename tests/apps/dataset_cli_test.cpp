@@ -155,6 +155,15 @@ TEST_F(CliBodyTest, GenerateMakesACheckedNecktieDatasetAndResumes) {
   EXPECT_EQ(manifest["pose_size"], 36);
   EXPECT_EQ(manifest["stats"]["accepted"], 3);
   EXPECT_LE(manifest["stats"]["max_penetration_mm"].get<double>(), 2.0);
+  // A simulated dataset's statistics add the joint angles of the sampler's draws, made again from its seed.
+  const CliRun stats = runPixelcloth({"dataset", "stats", data.string(), "--out", (out / "stats").string(), "--quiet"});
+  ASSERT_EQ(stats.status, 0) << stats;
+  EXPECT_TRUE(isPng(out / "stats" / "joint_angles.png"));
+  const nlohmann::json filtering = nlohmann::json::parse(readFile(out / "stats" / "pose_filtering.json"));
+  EXPECT_EQ(filtering["kept"], 3);
+  EXPECT_EQ(filtering["simulated"].get<int>(),
+            3 + manifest["stats"]["rejected_total"].get<int>());  // the tie's arms do not drive it: nothing pruned
+  EXPECT_EQ(filtering["drawn"], filtering["simulated"]);
   // A necktie decoder learns from it; a whole-garment one does not fit the tie's images, and says so.
   const fs::path model = out / "model";
   const CliRun train = runPixelcloth({"train", "--dataset", data.string(), "--model", "necktie", "--width", "0.125",

@@ -6,10 +6,14 @@
 #include <cmath>
 
 #include "pixelcloth/body/body.h"
+#include "pixelcloth/data/dataset.h"
+#include "pixelcloth/sim/generate.h"
+#include "support/test_util.h"
 
 namespace pc = pixelcloth::core;
 namespace ps = pixelcloth::sim;
 namespace pb = pixelcloth::body;
+namespace fs = std::filesystem;
 
 namespace {
 const pb::Body& body() {
@@ -78,4 +82,36 @@ TEST(PoseSampler, AnArmThroughTheChestIsPrunedAndTheRestPoseIsNot) {
   degrees.setZero();
   degrees(5, 2) = 60;  // raised: outside
   EXPECT_FALSE(sampler.armInsideTorso(pb::Pose::fromEulerDegrees(degrees)));
+}
+
+// A simulated dataset's draws made again from its seed: the sampler's raw draws, those its prune let through to the
+// simulation and the samples' own poses, in the counts its manifest tallied.
+TEST(PoseSampler, ADatasetsDrawsAreMadeAgainFromItsSeedInTheCountsItsManifestTallied) {
+  const fs::path folder = pixelcloth::testing::freshDir("draws");
+  ps::GenerateOptions options;
+  options.count = 6;
+  options.seed = 3;
+  options.threads = 2;
+  options.mannequinEdge = 0.015;
+  ps::generateDataset(folder, options);
+  const pixelcloth::data::Dataset dataset = pixelcloth::data::openDataset(folder);
+  const pixelcloth::data::DatasetStats& tally = dataset.info.stats;
+  const auto pruned = tally.rejected.find("arm_inside_torso");
+  const int prunedDraws = pruned == tally.rejected.end() ? 0 : pruned->second;
+  const pb::Body body = pixelcloth::data::loadDatasetBody(folder);
+  const auto traits = pixelcloth::data::datasetGarment(dataset.info).traits;
+  const ps::SampledPoses poses = ps::datasetPoseDraws(dataset, body, traits);
+  ASSERT_EQ(poses.kept.size(), 6u);
+  for (int r = 0; r < 6; ++r) EXPECT_EQ(poses.kept[r].toVector(), dataset.pose(r)) << r;
+  EXPECT_EQ(static_cast<int>(poses.simulated.size()), tally.accepted + tally.rejectedTotal() - prunedDraws);
+  EXPECT_EQ(static_cast<int>(poses.drawn.size()), static_cast<int>(poses.simulated.size()) + prunedDraws);
+  EXPECT_GT(prunedDraws, 0) << "this seed's draws include arms inside the torso";
+
+  // Another seed's sampler does not draw these poses.
+  pixelcloth::data::Dataset other = dataset;
+  other.info.settings.seed = 4;
+  EXPECT_NE(pixelcloth::testing::inputErrorOf([&] {
+              ps::datasetPoseDraws(other, body, traits, 5);
+            }).find("none of the sampler's first 5 attempts from seed 4"),
+            std::string::npos);
 }

@@ -7,6 +7,7 @@
 
 #include "pixelcloth/body/body.h"
 #include "pixelcloth/body/skeleton.h"
+#include "pixelcloth/data/dataset.h"
 #include "pixelcloth/sim/garment_sim.h"
 
 namespace pixelcloth::sim {
@@ -43,6 +44,18 @@ nlohmann::json simulationSettings(const SimulationOptions& options);
 /// it. Sets `pruned` to the number of draws the sampler discarded (arm inside the torso) before this one.
 body::Pose samplePose(const body::Body& body, const garment::GarmentTraits& traits, std::uint64_t seed, int index,
                       int attempt, int* pruned = nullptr);
+
+/// The draws behind a simulated dataset's samples, made again from its seed (samplePose is a function of the seed, the
+/// sample index and the attempt): every pose the sampler drew for them (`drawn`), those its arm prune let through to
+/// the simulation (`simulated`), and the samples' own poses (`kept`). A sample's attempts before the one it holds
+/// were rejected by the simulation. For the appendix's joint-angle histograms before and after filtering.
+struct SampledPoses {
+  std::vector<body::Pose> drawn, simulated, kept;
+};
+/// Throws InputError naming the dataset when a sample's pose is not among the first `maxAttempts` attempts of its
+/// index (a dataset of another seed or sampler, or not simulated).
+SampledPoses datasetPoseDraws(const data::Dataset& dataset, const body::Body& body,
+                              const garment::GarmentTraits& traits, int maxAttempts = 50);
 
 /// What a generate run did.
 struct GenerateReport {

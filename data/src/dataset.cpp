@@ -189,6 +189,11 @@ int DatasetStats::rejectedTotal() const {
   return total;
 }
 
+int DatasetStats::simulated() const {
+  const auto pruned = rejected.find(rejectionName(Rejection::ArmInsideTorso));
+  return accepted + rejectedTotal() - (pruned == rejected.end() ? 0 : pruned->second);
+}
+
 json DatasetStats::toJson() const {
   const bool any = accepted > 0;
   json rejectedJson = json::object();

@@ -89,9 +89,7 @@ class Run {
     figures.regularisation = info.counts.regularisation;
     figures.test = info.counts.test;
     figures.accepted = info.stats.accepted;
-    const auto pruned = info.stats.rejected.find("arm_inside_torso");
-    figures.simulated =
-        info.stats.accepted + info.stats.rejectedTotal() - (pruned == info.stats.rejected.end() ? 0 : pruned->second);
+    figures.simulated = info.stats.simulated();
     return figures;
   }
 

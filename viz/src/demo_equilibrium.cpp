@@ -69,15 +69,12 @@ void demoEquilibrium(Report& report, const body::Body& body, const eval::Equilib
              {"max_distance_cm", 100 * c.maxDistance()},
              {"colour_scale_cm", 100 * scale},
              {"shown", shown}};
-  // The sampler's pruned draws (an arm inside the torso) were never simulated.
+  // The simulation's rejections; the sampler's pruned draws (an arm inside the torso) were never simulated.
   const std::string pruned = data::rejectionName(data::Rejection::ArmInsideTorso);
-  int simulated = ns.accepted;
+  const int simulated = ns.simulated();
   std::ostringstream rejections;
-  for (const auto& [reason, count] : ns.rejected) {
-    if (reason == pruned || count == 0) continue;
-    simulated += count;
-    rejections << (rejections.tellp() > 0 ? ", " : "") << count << " " << reason;
-  }
+  for (const auto& [reason, count] : ns.rejected)
+    if (reason != pruned && count > 0) rejections << (rejections.tellp() > 0 ? ", " : "") << count << " " << reason;
   std::ostringstream text;
   text << std::fixed << std::setprecision(2) << "The first " << newton.rows()
        << " poses of the T-shirt dataset simulated again by the Newton solver, run until the net force on every vertex "

@@ -104,6 +104,9 @@ struct DatasetStats {
   void reject(Rejection rejection, int count = 1);
   void merge(const DatasetStats& other);
   int rejectedTotal() const;
+  /// Poses simulated: the accepted ones and those the simulation rejected (the sampler's pruned draws, an arm inside
+  /// the torso, were never simulated).
+  int simulated() const;
   /// {"accepted", "accepted_after_extra_rounds", "max_penetration_mm", "mean_iterations", "max_iterations",
   ///  "mean_seconds", "total_seconds", "min_area_ratio", "max_area_ratio", "rejected": {reason: count},
   ///  "rejected_total"}, and "max_residual_force_ratio" when the samples measured it; area ratios are null when no

@@ -24,6 +24,10 @@ void registerBench(CLI::App& app) {
                    "Poses the equilibrium probe simulates on each mesh, continuation path, garment and body")
       ->capture_default_str()
       ->check(CLI::Range(2, 10000));
+  verb->add_option("--probe-friction", options->probeFriction,
+                   "Coulomb friction of cloth on the body in the equilibrium probe (default: the Newton solver's, "
+                   "frictionless)")
+      ->check(CLI::Range(0.0, 2.0));
   auto only = std::make_shared<std::string>("all");
   verb->add_option("--only", *only,
                    "Which figures: all, procedural (body to simulation and files), learn, stitch (the PCA filter), "

@@ -15,6 +15,7 @@ namespace pixelcloth::apps {
 namespace {
 struct ExperimentsArgs {
   std::string scale = "small", out, solver = "pd";
+  double friction = -1;  ///< < 0: the solver's default
   int threads = 0;
 };
 
@@ -23,6 +24,7 @@ void runExperiments(const ExperimentsArgs& args) {
   eval::ExperimentPlan plan = eval::ExperimentPlan::ofScale(scale);
   plan.threads = args.threads;
   plan.solver = sim::parseSolverKind(args.solver, "experiments --solver");
+  plan.friction = args.friction;
   const std::filesystem::path out =
       args.out.empty() ? std::filesystem::path("experiments") / args.scale : std::filesystem::path(args.out);
   core::checkOutputFolder(out);
@@ -50,6 +52,9 @@ void registerExperiments(CLI::App& app) {
                    "equilibrium; about 8 s a T-shirt pose on one core)")
       ->capture_default_str()
       ->check(CLI::IsMember({"pd", "newton"}));
+  verb->add_option("--friction", args->friction,
+                   "With --solver newton: Coulomb friction of cloth on the body (default 0, frictionless)")
+      ->check(CLI::Range(0.0, 2.0));
   verb->add_option("--threads", args->threads, "Worker threads (0: one per core)")
       ->capture_default_str()
       ->check(CLI::Range(0, 256));

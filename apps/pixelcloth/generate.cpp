@@ -15,6 +15,7 @@ struct GenerateArgs {
   std::string out;
   std::string solver = "pd";
   double stepDegrees = 0;  ///< 0: the solver's own default
+  double friction = -1;    ///< < 0: the solver's own default (the Newton path is frictionless)
 };
 
 void runGenerate(GenerateArgs args) {
@@ -24,6 +25,14 @@ void runGenerate(GenerateArgs args) {
   if (args.stepDegrees > 0)
     (simulation.kind == sim::SolverKind::Newton ? simulation.newton.stepDegrees : simulation.stepDegrees) =
         args.stepDegrees;
+  if (args.friction >= 0) {
+    if (simulation.kind != sim::SolverKind::Newton)
+      throw core::InputError(
+          "generate --friction: friction is a setting of --solver newton (projective dynamics has "
+          "its own contact friction), got --solver " +
+          args.solver);
+    simulation.newton.solver.friction = args.friction;
+  }
   const sim::GenerateReport report = sim::generateDataset(args.out, args.options);
   PIXELCLOTH_INFO("generate: " << report.added << " samples simulated (" << report.resumed << " already done, "
                                << report.rejected << " simulations rejected) in " << report.seconds << " s -> "
@@ -59,6 +68,11 @@ void registerGenerate(CLI::App& app) {
                    "many degrees of any joint's rotation, the cloth solved at each (default: 25 with pd, 10 with "
                    "newton)")
       ->check(CLI::Range(1.0, 180.0));
+  verb->add_option("--friction", args->friction,
+                   "With --solver newton: Coulomb friction coefficient of cloth on the body (default 0, "
+                   "frictionless). Lagged per continuation step; a pose whose friction does not come within the "
+                   "Coulomb bound is rejected as not_converged")
+      ->check(CLI::Range(0.0, 2.0));
   verb->add_option("--threads", o.threads, "Worker threads (0: one per core)")->capture_default_str();
   verb->add_flag("--quiet", args->quiet, "No progress on stderr");
   verb->callback([args] { runGenerate(*args); });

@@ -473,8 +473,9 @@ Body importedBody() {
 /// within 0.5 cm of the 3000-vertex mesh's, mean over the poses both keep, compared through the pattern); and along a
 /// second continuation path, steps of at most twice the degrees (within 0.3 cm, the spread the issue allows); and on
 /// a garment and a body brought in from files (at least 90% kept).
-void benchEquilibriumProbe(const FigureSink& sink, int count) {
+void benchEquilibriumProbe(const FigureSink& sink, int count, double friction) {
   PIXELCLOTH_CHECK(count >= 2 && count <= 10000, "bench: " << count << " probe poses, expected 2 to 10000");
+  PIXELCLOTH_CHECK(friction <= 2, "bench: probe friction " << friction << ", expected 0 to 2");
   const Body body = makeMannequin();
   // Seeds 9001 and 9002: no figure or setting was tuned on them.
   auto drawPoses = [&](const Body& on) {
@@ -486,6 +487,7 @@ void benchEquilibriumProbe(const FigureSink& sink, int count) {
   const std::vector<Pose> poses = drawPoses(body);
   sim::SimulationOptions options;
   options.kind = sim::SolverKind::Newton;
+  if (friction >= 0) options.newton.solver.friction = friction;
   struct Run {
     Garment garment;
     std::vector<data::Sample> samples;
@@ -494,7 +496,8 @@ void benchEquilibriumProbe(const FigureSink& sink, int count) {
   auto simulateOn = [&](const Body& on, const std::vector<Pose>& drawn, const Garment& garment,
                         const sim::SimulationOptions& o) {
     std::cerr << "bench: equilibrium probe, " << garment.name << ", " << garment.mesh.numVertices()
-              << " vertices, steps of " << o.newton.stepDegrees << " degrees, " << count << " poses\n";
+              << " vertices, steps of " << o.newton.stepDegrees << " degrees, friction " << o.newton.solver.friction
+              << ", " << count << " poses\n";
     const cage::Dressing dressing = cage::dressGarment(on, cage::bodyCage(on), garment, cage::garmentCage(garment));
     Run run{garment, sim::simulatePoseSamples(on, garment, dressing, drawn, o), 0};
     std::map<std::string, std::vector<std::string>> rejected;  // reason -> the poses, as "seed:index" (samplePose)
@@ -547,7 +550,8 @@ void benchEquilibriumProbe(const FigureSink& sink, int count) {
                               {"unit", "%"},
                               {"goal", 95},
                               {"higher_is_better", true},
-                              {"poses", count}});
+                              {"poses", count},
+                              {"friction", options.newton.solver.friction}});
   emit(sink, "sim.newton.probe.max_residual_force_of_weight", worst, "ratio", options.newton.solver.forceTolerance);
   emit(sink, "sim.newton.probe.seconds_per_pose", seconds / count, "s", 0.25);
 
@@ -639,7 +643,7 @@ void runSuite(Suite suite, const SuiteOptions& options, const FigureSink& sink) 
     case Suite::Equilibrium:
       return benchEquilibrium(sink);
     case Suite::EquilibriumProbe:
-      return benchEquilibriumProbe(sink, options.probePoses);
+      return benchEquilibriumProbe(sink, options.probePoses, options.probeFriction);
   }
 }
 

@@ -61,20 +61,21 @@ class Run {
     options.threads = threads_;
     options.mannequinEdge = results_.plan.mannequinEdge;
     options.simulation.kind = results_.plan.solver;
+    if (results_.plan.friction >= 0) options.simulation.newton.solver.friction = results_.plan.friction;
     const fs::path folder = out_ / "data" / name;
-    // A finished dataset of this garment, size, seed and solver is kept as it is; anything else is
+    // A finished dataset of this garment, size, seed, solver and friction is kept as it is; anything else is
     // generated, resumed or refused by sim::generateDataset (which rebuilds the body and dressing to check them
     // against the folder's).
+    const nlohmann::json simulator = sim::simulationSettings(options.simulation);
     std::error_code ec;
     const bool finished = fs::is_regular_file(folder / "manifest.json", ec) && [&] {
       const data::DatasetSettings s = data::readDatasetInfo(folder).settings;
       return s.garment == garment && s.count == count && s.seed == seed && s.rows() == count &&
-             s.generator.value("solver", "") == sim::simulationSettings(options.simulation)["solver"];
+             s.generator.value("solver", "") == simulator["solver"] &&
+             s.generator.value("friction", -1.0) == simulator["friction"].get<double>();
     }();
     if (!finished) sim::generateDataset(folder, options);
-    const std::string solver = results_.plan.solver == sim::SolverKind::ProjectiveDynamics
-                                   ? ""
-                                   : std::string(" --solver ") + sim::solverKindName(results_.plan.solver);
+    const std::string solver = simulatorFlags(results_.plan);
     command("pixelcloth generate --count " + std::to_string(count) + " --seed " + std::to_string(seed) + " --garment " +
             garment + solver + " --out data/" + name);
     return figuresOf(folder);
@@ -166,6 +167,14 @@ void measureModel(ModelFigures& figures, const data::DatasetFolder& dataset,
 }
 
 const char* scaleName(Scale scale) { return kScales.name(scale); }
+
+std::string simulatorFlags(const ExperimentPlan& plan) {
+  if (plan.solver == sim::SolverKind::ProjectiveDynamics) return "";
+  std::ostringstream flags;
+  flags << " --solver " << sim::solverKindName(plan.solver);
+  if (plan.friction >= 0) flags << " --friction " << plan.friction;
+  return flags.str();
+}
 Scale scaleFromName(const std::string& name, const std::string& context) { return kScales.fromName(name, context); }
 
 ExperimentPlan ExperimentPlan::ofScale(Scale scale) {
@@ -208,6 +217,10 @@ void ExperimentPlan::validate() const {
                                                         << ", expected 1 or more");
   PIXELCLOTH_CHECK(pcaComponents >= 1, "experiments: " << pcaComponents << " principal components, expected 1 or more");
   PIXELCLOTH_CHECK(threads >= 0 && threads <= 256, "experiments: threads " << threads << ", expected 0 to 256");
+  PIXELCLOTH_CHECK(friction < 0 || (solver == sim::SolverKind::Newton && friction <= 2),
+                   "experiments: friction " << friction << " with the " << sim::solverKindName(solver)
+                                            << " solver, expected 0 to 2 with newton (projective dynamics has its "
+                                               "own contact friction)");
   for (const BodyVariant& body : bodies) {
     PIXELCLOTH_CHECK(!body.name.empty() && body.name.find('/') == std::string::npos,
                      "experiments: body variant name '" << body.name << "', expected a plain folder name");

@@ -598,6 +598,20 @@ struct EquilibriumSolver::Impl {
     return excess;
   }
 
+  /// Lags friction again at x without letting any contact's friction grow: each vertex keeps the smaller of its
+  /// lagged friction force and `ease` times the Coulomb bound at x, with the tangent plane at x (zero where the
+  /// contact let go). The lagged forces only fall, so the lags end, and at their end no friction exceeds mu times
+  /// the normal force that holds it: a Coulomb-admissible equilibrium.
+  void easeFriction(const Eigen::MatrixX3d& x, double ease) {
+    for (int v = 0; v < n; ++v) {
+      if (frictionForce(v) <= 0) continue;
+      const Eigen::Vector3d push = barrierPush(v, x.row(v).transpose());
+      const double normal = push.norm();
+      frictionForce(v) = std::min(frictionForce(v), ease * friction * normal);
+      if (normal > 0) tangent[v] = tangentPlane(push / normal);
+    }
+  }
+
   void lagFriction(const Eigen::MatrixX3d& x) {
     frictionForce.setZero(n);
     if (friction <= 0 || colliders.empty()) return;
@@ -750,7 +764,10 @@ void EquilibriumSolver::beginStep(Eigen::MatrixX3d& x) {
   impl_->lagFriction(x);
 }
 
-void EquilibriumSolver::updateFriction(const Eigen::MatrixX3d& x) { impl_->lagFriction(x); }
+void EquilibriumSolver::updateFriction(const Eigen::MatrixX3d& x, double ease) {
+  PIXELCLOTH_CHECK(ease > 0 && ease <= 1, "solver: friction ease must be in (0, 1], got " << ease);
+  impl_->easeFriction(x, ease);
+}
 
 EquilibriumReport EquilibriumSolver::solve(Eigen::MatrixX3d& x, int maxIterations, double forceTolerance) {
   const DynamicTeams teams;

@@ -48,6 +48,8 @@ void NewtonSchedule::validate() const {
   PIXELCLOTH_CHECK(stepTolerance > 0 && std::isfinite(stepTolerance),
                    "simulation: step tolerance must be positive, got " << stepTolerance);
   PIXELCLOTH_CHECK(frictionLags >= 0, "simulation: friction lags must be >= 0, got " << frictionLags);
+  PIXELCLOTH_CHECK(frictionEase > 0 && frictionEase <= 1,
+                   "simulation: friction ease must be in (0, 1], got " << frictionEase);
   PIXELCLOTH_CHECK(stepDegrees > 0 && stepDegrees <= 180,
                    "simulation: step must be in (0, 180] degrees, got " << stepDegrees);
 }
@@ -286,11 +288,12 @@ data::SampleStats GarmentSimulator::simulateNewton(const body::Pose& pose, int s
     }
     report = newton_->solve(x, schedule.finalIterations);
     iterations += report.iterations;
-    // Friction lagged at the step's start may hold vertices whose contact has since let go or eased: lag it again
-    // where the cloth now is, until every contact's friction is within its Coulomb bound (IPC's lagged iterations).
+    // Friction lagged at the step's start may hold vertices whose contact has since let go or eased: ease it where
+    // the cloth now is (never raising it) and solve again, until every contact's friction is within its Coulomb
+    // bound (IPC's lagged iterations, made monotone).
     for (int lag = 0;
          lag < schedule.frictionLags && report.converged && coulombRatio(x) >= schedule.solver.forceTolerance; ++lag) {
-      newton_->updateFriction(x);
+      newton_->updateFriction(x, schedule.frictionEase);
       report = newton_->solve(x, schedule.finalIterations);
       iterations += report.iterations;
     }

@@ -85,7 +85,8 @@ nlohmann::json simulationSettings(const SimulationOptions& s) {
     const EquilibriumOptions& q = n.solver;
     return {{"solver", "newton"},
             {"method", std::string("Newton, projected Hessian, CHOLMOD; IPC barrier contact, ") +
-                           (q.friction > 0 ? "lagged friction" : "frictionless") + "; pattern rest shape"},
+                           (q.friction > 0 ? "lagged friction, eased to the Coulomb bound" : "frictionless") +
+                           "; pattern rest shape"},
             {"stretch_stiffness_n_per_m", q.stretchStiffness},
             {"compression_ratio", q.compressionRatio},
             {"bend_stiffness_n_m", q.bendStiffness},
@@ -103,6 +104,7 @@ nlohmann::json simulationSettings(const SimulationOptions& s) {
             {"step_tolerance_of_weight", n.stepTolerance},
             {"final_iterations", n.finalIterations},
             {"friction_lags", n.frictionLags},
+            {"friction_ease", n.frictionEase},
             {"rest_iterations", n.restIterations},
             {"min_area_ratio", s.minAreaRatio},
             {"max_area_ratio", s.maxAreaRatio},

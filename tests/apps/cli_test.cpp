@@ -24,7 +24,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
       {"garment", {"kind", "tshirt", "necktie", "--out", "--vertices"}},
       {"pose", {"--body", "--pose", "--random", "--seed", "--out"}},
       {"demo", {"--out", "--poses", "--seed"}},
-      {"bench", {"--repeats"}},
+      {"bench", {"--repeats", "--probe-friction"}},
       {"bases", {"--figures", "--side", "--cells", "--amplitude", "--theta", "--ratio", "--size"}},
       {"images",
        {"--garment", "--values", "--image", "--out", "--width", "--height", "--padding", "default", "--dataset",
@@ -37,7 +37,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
       {"dress", {"--garment", "tshirt", "necktie", "--body", "--out"}},
       {"generate",
        {"--count", "--seed", "--out", "--garment", "--shard", "--body", "--body-shape", "--corrupt-weights", "--solver",
-        "newton", "--step-degrees", "--threads", "--quiet"}},
+        "newton", "--step-degrees", "--friction", "--threads", "--quiet"}},
       {"markers", {"--garment", "--spacing", "--dataset", "--sample", "--noise", "--dropout", "--pose-out", "--out"}},
       {"reconstruct",
        {"--markers", "--pose", "--body", "--dressing", "--method", "--dataset", "--split", "--noise", "--dropout",
@@ -48,7 +48,7 @@ TEST_F(CliTest, HelpOfEveryVerbListsItsOptions) {
         "--normal-weight", "--edge-weight", "--epochs", "--batch", "--lr", "--seed", "--threads", "--out", "--quiet"}},
       {"predict", {"--model", "--pose", "--markers", "--dataset", "--samples", "--base", "--out"}},
       {"evaluate", {"--model", "--dataset", "--split", "--base", "--out"}},
-      {"experiments", {"--scale", "small", "full", "--out", "--threads"}},
+      {"experiments", {"--scale", "small", "full", "--out", "--friction", "--threads"}},
       {"view", {"folder", "--out", "--max-scenes"}},
   };
   for (const auto& [verb, options] : verbs) {

@@ -208,6 +208,11 @@ TEST_F(CliTest, GenerateRefusesBadSettings) {
   EXPECT_TRUE(refused(runPixelcloth({"generate", "--count", "4", "--step-degrees", "0", "--out", (out / "f").string()}),
                       {"--step-degrees"}));
   EXPECT_FALSE(fs::exists(out / "f"));
+  // Friction is the Newton solver's setting: with projective dynamics it is refused, naming both.
+  const CliRun friction =
+      runPixelcloth({"generate", "--count", "4", "--friction", "0.3", "--out", (out / "g").string()});
+  EXPECT_TRUE(refused(friction, {"generate --friction", "--solver newton", "got --solver pd"})) << friction;
+  EXPECT_FALSE(fs::exists(out / "g"));
 }
 
 TEST_F(CliDatasetTest, DatasetFilesAreVerifiedWhenOpenedUnlessNoVerify) {

@@ -102,6 +102,15 @@ TEST(Experiments, ATinyPlanRunsEveryExperimentAndItsReportPutsThePapersFiguresBe
   const std::string newtonMd = pixelcloth::core::readTextFile(report / "results.md");
   EXPECT_NE(newtonMd.find("`pixelcloth experiments --scale full --solver newton`"), std::string::npos);
   EXPECT_NE(newtonMd.find("static equilibrium"), std::string::npos);
+  // With friction, the report and its commands carry the coefficient; friction without Newton is refused.
+  equilibrium.plan.friction = 0.3;
+  pixelcloth::viz::writeExperimentReport(equilibrium, report);
+  const std::string frictionMd = pixelcloth::core::readTextFile(report / "results.md");
+  EXPECT_NE(frictionMd.find("`pixelcloth experiments --scale full --solver newton --friction 0.3`"), std::string::npos);
+  EXPECT_NE(frictionMd.find("Coulomb friction 0.3"), std::string::npos);
+  pe::ExperimentPlan frictionPd = tinyPlan();
+  frictionPd.friction = 0.3;
+  EXPECT_NE(inputErrorOf([&] { frictionPd.validate(); }).find("expected 0 to 2 with newton"), std::string::npos);
   EXPECT_NE(md.find("projective dynamics"), std::string::npos);
 }
 

@@ -169,6 +169,45 @@ TEST(NewtonSimulation, RestDrapeAndAKeptPoseAreEquilibriaAndAnUnfinishedOneIsRej
   EXPECT_GT(unfinished.stats.residualForceRatio, tolerance);
 }
 
+// With Coulomb friction (mu = 0.3) the friction lagged where the last continuation step starts holds cloth whose
+// contact has since eased or let go; the lags at the target pose ease it until every contact's friction is within
+// mu times the normal force that holds it. Without them the pose is rejected, never kept with friction no contact
+// provides.
+TEST(NewtonSimulation, FrictionIsEasedWithinTheCoulombBoundAndAPoseBeyondItIsRejected) {
+  const body::Body body = body::makeMannequin();
+  garment::TShirtOptions coarse;
+  coarse.targetVertices = 1000;
+  const garment::Garment shirt = garment::makeTShirt(coarse);
+  const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), shirt, cage::garmentCage(shirt));
+  SimulationOptions options;
+  options.kind = SolverKind::Newton;
+  GarmentSimulator frictionless(body, shirt, dressing, options);
+  options.newton.solver.friction = 0.3;
+  GarmentSimulator simulator(body, shirt, dressing, options, &frictionless.restDrape());
+  const double tolerance = options.newton.solver.forceTolerance;
+  Eigen::Matrix<double, 10, 3> euler = Eigen::Matrix<double, 10, 3>::Zero();
+  euler(1, 0) = 10;   // spine: bend forward
+  euler(5, 2) = -30;  // l_arm down
+  euler(8, 2) = 30;   // r_arm down
+  const body::Pose pose = body::Pose::fromEulerDegrees(euler);
+  const data::Sample held = simulator.simulate(pose);
+  ASSERT_EQ(held.stats.rejection, data::Rejection::None)
+      << data::rejectionName(held.stats.rejection) << ", " << held.stats.residualForceRatio << " of the weight";
+  EXPECT_LT(held.stats.residualForceRatio, tolerance);  // net force and friction beyond the bound, both
+  // Friction holds the shirt elsewhere than where it slides to without.
+  const data::Sample slid = frictionless.simulate(pose);
+  ASSERT_EQ(slid.stats.rejection, data::Rejection::None);
+  EXPECT_GT((held.positions - slid.positions).rowwise().norm().mean(), 1e-3f);
+
+  // No lags: the friction lagged at the last step's start is left beyond the bound, and the pose is rejected.
+  SimulationOptions unlagged = options;
+  unlagged.newton.frictionLags = 0;
+  GarmentSimulator hasty(body, shirt, dressing, unlagged, &frictionless.restDrape());
+  const data::Sample unfinished = hasty.simulate(pose);
+  EXPECT_EQ(unfinished.stats.rejection, data::Rejection::NotConverged);
+  EXPECT_GT(unfinished.stats.residualForceRatio, tolerance);
+}
+
 TEST(SimulationOptions, SolverNamesAndNewtonScheduleOutOfRangeAreRefused) {
   EXPECT_EQ(parseSolverKind("newton", "test"), SolverKind::Newton);
   EXPECT_EQ(parseSolverKind("pd", "test"), SolverKind::ProjectiveDynamics);
@@ -179,6 +218,9 @@ TEST(SimulationOptions, SolverNamesAndNewtonScheduleOutOfRangeAreRefused) {
   options.newton.frictionLags = -1;
   EXPECT_NE(testing::inputErrorOf([&] { options.validate(); }).find("friction lags"), std::string::npos);
   options.newton.frictionLags = 0;
+  options.newton.frictionEase = 0;
+  EXPECT_NE(testing::inputErrorOf([&] { options.validate(); }).find("friction ease"), std::string::npos);
+  options.newton.frictionEase = 0.7;
   options.newton.stepTolerance = 0;
   EXPECT_NE(testing::inputErrorOf([&] { options.validate(); }).find("step tolerance"), std::string::npos);
   options.newton.stepTolerance = 0.2;

@@ -91,9 +91,12 @@ void writeExperimentReport(const eval::ExperimentResults& r, const fs::path& out
 
   const eval::ExperimentPlan& p = r.plan;
   const bool newton = p.solver == sim::SolverKind::Newton;
-  const std::string solverFlag = newton ? " --solver newton" : "";
-  const char* simulatedBy = newton ? "Both datasets simulated to static equilibrium (Newton, docs/simulation.md)."
-                                   : "Both datasets simulated by projective dynamics' fixed schedule.";
+  const std::string solverFlag = eval::simulatorFlags(p);
+  std::ostringstream friction;
+  if (p.friction > 0) friction << ", Coulomb friction " << p.friction;
+  const std::string simulatedBy =
+      newton ? "Both datasets simulated to static equilibrium (Newton" + friction.str() + ", docs/simulation.md)."
+             : "Both datasets simulated by projective dynamics' fixed schedule.";
   std::ostringstream md;
   md << "# The paper's experiments on pixelcloth's data (" << r.scale << " scale)\n\n"
      << "Made by "

@@ -28,6 +28,8 @@ struct SuiteOptions {
   int repeats = 5;        ///< runs per figure, the median reported, [1, 100]
   int epochShirts = 400;  ///< shirts simulated for learn.epoch_seconds_w025 (80% train), [10, 100000]
   int probePoses = 32;    ///< poses the equilibrium probe simulates per mesh, path, garment and body, [2, 10000]
+  /// The probe's Coulomb friction of cloth on the body, [0, 2]; < 0: the Newton solver's default (frictionless).
+  double probeFriction = -1;
 };
 
 /// Measures `suite`, handing each figure to `sink`. Notes on what was measured go to stderr.

@@ -65,6 +65,8 @@ struct ExperimentPlan {
   int threads = 0;                  ///< 0: one per core
   /// The simulator of both datasets: projective dynamics' fixed schedule, or Newton run to static equilibrium.
   sim::SolverKind solver = sim::SolverKind::ProjectiveDynamics;
+  /// With the Newton solver, the Coulomb friction of cloth on the body; < 0: the solver's default (frictionless).
+  double friction = -1;
   std::uint64_t seed = 1;           ///< the T-shirt dataset's; the necktie's is seed + 1
   double mannequinEdge = 0.0075;    ///< the mannequin's triangle size, metres (tests use coarser bodies)
 
@@ -73,6 +75,10 @@ struct ExperimentPlan {
   /// Throws InputError naming the field that is out of range.
   void validate() const;
 };
+
+/// The simulator's flags of `plan`'s `pixelcloth generate` and `experiments` commands: "" for projective dynamics,
+/// " --solver newton" and " --friction MU" when set.
+std::string simulatorFlags(const ExperimentPlan& plan);
 
 /// A dataset the experiments made.
 struct DatasetFigures {

@@ -92,9 +92,13 @@ class EquilibriumSolver {
   /// of it, so the solve starts where the barrier is finite; then friction is lagged at `x` (normal forces, tangent
   /// planes and the points slides are measured from).
   void beginStep(Eigen::MatrixX3d& x);
-  /// Lags friction again at `x` (normal forces and tangent planes) and keeps the step's start points: IPC's lagged
-  /// iteration, for the final pose.
-  void updateFriction(const Eigen::MatrixX3d& x);
+  /// Lags friction again at `x` and keeps the step's start points (IPC's lagged iteration, for the final pose), but
+  /// no contact's friction grows: each vertex's lagged friction force becomes the smaller of the lagged one and
+  /// `ease` times the Coulomb bound at `x` (mu times the barrier's normal force there; zero where the contact let
+  /// go), its tangent plane the one at `x`. Since the lagged forces only fall, repeated lags end within the Coulomb
+  /// bound (coulombExcess) instead of cycling between a contact that holds and one that lets go; `ease` below 1
+  /// leaves room for the next solve to ease a contact further, so fewer lags are needed.
+  void updateFriction(const Eigen::MatrixX3d& x, double ease = 1);
   /// Newton iterations from `x` (updated in place) until the stopping test holds or `maxIterations` have run.
   /// `forceTolerance` > 0 overrides the options' for this call (a looser test on intermediate steps).
   EquilibriumReport solve(Eigen::MatrixX3d& x, int maxIterations, double forceTolerance = 0);

@@ -102,14 +102,43 @@ TEST_F(TShirtSimulation, LoweredArmsCarryTheirSleevesAndASampleDependsOnlyOnItsP
 }
 
 // The Newton solver (SolverKind::Newton) on a coarser T-shirt of the same pattern, so that its factorisations stay
-// cheap: the rest drape and a kept pose are static equilibria, checked against the net force recomputed here; a pose
-// that cannot get there within its budget is rejected as not converged, never kept.
-TEST(NewtonSimulation, RestDrapeAndAKeptPoseAreEquilibriaAndAnUnfinishedOneIsRejected) {
-  const body::Body body = body::makeMannequin();
-  garment::TShirtOptions coarse;
-  coarse.targetVertices = 1000;
-  const garment::Garment shirt = garment::makeTShirt(coarse);
-  const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), shirt, cage::garmentCage(shirt));
+// cheap, and a pose that bends forward with both arms lowered.
+class NewtonSimulation : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    body_ = new body::Body(body::makeMannequin());
+    garment::TShirtOptions coarse;
+    coarse.targetVertices = 1000;
+    shirt_ = new garment::Garment(garment::makeTShirt(coarse));
+    dressing_ =
+        new cage::Dressing(cage::dressGarment(*body_, cage::bodyCage(*body_), *shirt_, cage::garmentCage(*shirt_)));
+  }
+  static void TearDownTestSuite() {
+    delete dressing_;
+    delete shirt_;
+    delete body_;
+  }
+  static Eigen::Matrix<double, 10, 3> leanArmsDown() {
+    Eigen::Matrix<double, 10, 3> euler = Eigen::Matrix<double, 10, 3>::Zero();
+    euler(1, 0) = 10;   // spine: bend forward
+    euler(5, 2) = -30;  // l_arm down
+    euler(8, 2) = 30;   // r_arm down
+    return euler;
+  }
+  static body::Body* body_;
+  static garment::Garment* shirt_;
+  static cage::Dressing* dressing_;
+};
+body::Body* NewtonSimulation::body_ = nullptr;
+garment::Garment* NewtonSimulation::shirt_ = nullptr;
+cage::Dressing* NewtonSimulation::dressing_ = nullptr;
+
+// The rest drape and a kept pose are static equilibria, checked against the net force recomputed here; a pose that
+// cannot get there within its budget is rejected as not converged, never kept.
+TEST_F(NewtonSimulation, RestDrapeAndAKeptPoseAreEquilibriaAndAnUnfinishedOneIsRejected) {
+  const body::Body& body = *body_;
+  const garment::Garment& shirt = *shirt_;
+  const cage::Dressing& dressing = *dressing_;
   SimulationOptions options;
   options.kind = SolverKind::Newton;
   GarmentSimulator simulator(body, shirt, dressing, options);
@@ -118,10 +147,7 @@ TEST(NewtonSimulation, RestDrapeAndAKeptPoseAreEquilibriaAndAnUnfinishedOneIsRej
   EXPECT_LT(simulator.restStats().residualForceRatio, tolerance);
   EXPECT_EQ(simulator.restStats().maxPenetration, 0.0);  // the barrier keeps every vertex outside
 
-  Eigen::Matrix<double, 10, 3> euler = Eigen::Matrix<double, 10, 3>::Zero();
-  euler(1, 0) = 10;   // spine: bend forward
-  euler(5, 2) = -30;  // l_arm down
-  euler(8, 2) = 30;   // r_arm down
+  const Eigen::Matrix<double, 10, 3> euler = leanArmsDown();
   const body::Pose pose = body::Pose::fromEulerDegrees(euler);
   const data::Sample sample = simulator.simulate(pose);
   ASSERT_EQ(sample.stats.rejection, data::Rejection::None)
@@ -173,23 +199,14 @@ TEST(NewtonSimulation, RestDrapeAndAKeptPoseAreEquilibriaAndAnUnfinishedOneIsRej
 // contact has since eased or let go; the lags at the target pose ease it until every contact's friction is within
 // mu times the normal force that holds it. Without them the pose is rejected, never kept with friction no contact
 // provides.
-TEST(NewtonSimulation, FrictionIsEasedWithinTheCoulombBoundAndAPoseBeyondItIsRejected) {
-  const body::Body body = body::makeMannequin();
-  garment::TShirtOptions coarse;
-  coarse.targetVertices = 1000;
-  const garment::Garment shirt = garment::makeTShirt(coarse);
-  const cage::Dressing dressing = cage::dressGarment(body, cage::bodyCage(body), shirt, cage::garmentCage(shirt));
+TEST_F(NewtonSimulation, FrictionIsEasedWithinTheCoulombBoundAndAPoseBeyondItIsRejected) {
   SimulationOptions options;
   options.kind = SolverKind::Newton;
-  GarmentSimulator frictionless(body, shirt, dressing, options);
+  GarmentSimulator frictionless(*body_, *shirt_, *dressing_, options);
   options.newton.solver.friction = 0.3;
-  GarmentSimulator simulator(body, shirt, dressing, options, &frictionless.restDrape());
+  GarmentSimulator simulator(*body_, *shirt_, *dressing_, options, &frictionless.restDrape());
   const double tolerance = options.newton.solver.forceTolerance;
-  Eigen::Matrix<double, 10, 3> euler = Eigen::Matrix<double, 10, 3>::Zero();
-  euler(1, 0) = 10;   // spine: bend forward
-  euler(5, 2) = -30;  // l_arm down
-  euler(8, 2) = 30;   // r_arm down
-  const body::Pose pose = body::Pose::fromEulerDegrees(euler);
+  const body::Pose pose = body::Pose::fromEulerDegrees(leanArmsDown());
   const data::Sample held = simulator.simulate(pose);
   ASSERT_EQ(held.stats.rejection, data::Rejection::None)
       << data::rejectionName(held.stats.rejection) << ", " << held.stats.residualForceRatio << " of the weight";
@@ -202,7 +219,7 @@ TEST(NewtonSimulation, FrictionIsEasedWithinTheCoulombBoundAndAPoseBeyondItIsRej
   // No lags: the friction lagged at the last step's start is left beyond the bound, and the pose is rejected.
   SimulationOptions unlagged = options;
   unlagged.newton.frictionLags = 0;
-  GarmentSimulator hasty(body, shirt, dressing, unlagged, &frictionless.restDrape());
+  GarmentSimulator hasty(*body_, *shirt_, *dressing_, unlagged, &frictionless.restDrape());
   const data::Sample unfinished = hasty.simulate(pose);
   EXPECT_EQ(unfinished.stats.rejection, data::Rejection::NotConverged);
   EXPECT_GT(unfinished.stats.residualForceRatio, tolerance);

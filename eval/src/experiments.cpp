@@ -168,6 +168,8 @@ void measureModel(ModelFigures& figures, const data::DatasetFolder& dataset,
 
 const char* scaleName(Scale scale) { return kScales.name(scale); }
 
+Scale scaleFromName(const std::string& name, const std::string& context) { return kScales.fromName(name, context); }
+
 std::string simulatorFlags(const ExperimentPlan& plan) {
   if (plan.solver == sim::SolverKind::ProjectiveDynamics) return "";
   std::ostringstream flags;
@@ -175,7 +177,6 @@ std::string simulatorFlags(const ExperimentPlan& plan) {
   if (plan.friction >= 0) flags << " --friction " << plan.friction;
   return flags.str();
 }
-Scale scaleFromName(const std::string& name, const std::string& context) { return kScales.fromName(name, context); }
 
 ExperimentPlan ExperimentPlan::ofScale(Scale scale) {
   ExperimentPlan plan;

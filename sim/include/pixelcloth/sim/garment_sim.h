@@ -59,7 +59,7 @@ struct NewtonSchedule {
   /// T-shirt pose tried; eased to 0.7 of it, 8 of 8 poses (seed 101) ended within it after 3 to 5 lags, against 8
   /// of 10 after up to 9 lags eased to the bound itself.
   int frictionLags = 10;
-  double frictionEase = 0.7;
+  double frictionEase = 0.7;  ///< what a lag lowers an exceeding contact's friction to, of its bound, (0, 1]
   int restIterations = 400;  ///< Newton iterations at most to settle the dressed garment in the rest pose (once)
   void validate() const;
 };

@@ -57,7 +57,7 @@ void runTrainGan(TrainArgs args, const CLI::App& verb) {
                    "patch --out DIR)");
   for (const char* option :
        {"--patches", "--components", "--space", "--residual", "--loss", "--target-scaling", "--min-channels",
-        "--normal-weight", "--edge-weight", "--networks-at-once", "--schedule", "--patience"})
+        "--normal-weight", "--edge-weight", "--networks-at-once", "--schedule", "--patience", "--train-samples"})
     PIXELCLOTH_CHECK(verb.count(option) == 0, "train --model gan: " << option << " is not an option of the blender "
                                                                     << "(it takes the space and base of --patch-model)");
   stitch::GanOptions& gan = args.gan;
@@ -182,6 +182,10 @@ void registerTrain(CLI::App& app) {
   verb->add_option("--patience", args->options.patience,
                    "Decoders and baselines: stop after this many epochs without a lower regularisation error (0: "
                    "run every epoch)")
+      ->capture_default_str();
+  verb->add_option("--train-samples", args->options.trainSamples,
+                   "Decoders and baselines: learn from only the first N samples of the train split (0: all), for "
+                   "learning curves; the regularisation and test splits stay whole")
       ->capture_default_str();
   verb->add_option("--seed", args->options.seed, "Seeds the weights and the order of the samples")
       ->capture_default_str();

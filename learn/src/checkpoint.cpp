@@ -46,6 +46,7 @@ nlohmann::json modelSidecar(const ModelSpec& spec, const TrainingData& data, int
           {"loss", loss},
           {"dataset", fs::absolute(data.folder).lexically_normal().string()},
           {"dataset_manifest_crc32", data.manifestCrc},
+          {"train_samples", data.train.size()},
           {"residual", data.residual()
                            ? nlohmann::json{{"folder", fs::absolute(data.baseFolder).lexically_normal().string()},
                                             {"manifest_crc32", data.baseCrc}}

@@ -446,6 +446,7 @@ void TrainOptions::validate() const {
   PIXELCLOTH_CHECK(std::isfinite(normalWeight) && std::isfinite(edgeWeight),
                    "train: the normal and edge weights must be finite");
   PIXELCLOTH_CHECK(patience >= 0, "train: patience " << patience << ", expected 0 (off) or more epochs");
+  PIXELCLOTH_CHECK(trainSamples >= 0, "train: " << trainSamples << " train samples, expected 0 (all) or more");
   PIXELCLOTH_CHECK(threads >= 0 && threads <= 1024, "train: " << threads << " threads, expected 0 to 1024");
   PIXELCLOTH_CHECK(networksAtOnce >= 0 && networksAtOnce <= 1024,
                    "train: " << networksAtOnce << " networks at once, expected 0 to 1024");
@@ -492,8 +493,14 @@ TrainReport train(const data::DatasetFolder& dataset, const fs::path& out, const
   const OffsetSpace space = options.space.value_or(traits.rootFrameOffsets ? OffsetSpace::Root : OffsetSpace::Local);
   const double normalWeight = options.normalWeight >= 0 ? options.normalWeight : traits.normalLossWeight;
   const double edgeWeight = options.edgeWeight >= 0 ? options.edgeWeight : traits.edgeLossWeight;
-  const TrainingData data = loadTrainingData(dataset, space, options.residual);
+  TrainingData data = loadTrainingData(dataset, space, options.residual);
   PIXELCLOTH_CHECK(!data.train.empty(), "train: " << datasetFolder.string() << " has no training samples");
+  if (options.trainSamples > 0) {
+    PIXELCLOTH_CHECK(options.trainSamples <= static_cast<int>(data.train.size()),
+                     "train --train-samples " << options.trainSamples << ": " << datasetFolder.string() << " has "
+                                              << data.train.size() << " samples in its train split");
+    data.train.resize(options.trainSamples);
+  }
 
   ModelSpec spec = options.model;
   spec.inputSize = static_cast<int>(data.inputs.cols());

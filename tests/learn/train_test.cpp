@@ -319,6 +319,33 @@ TEST(Train, TheBaselinesTrainInEachSpace) {
   EXPECT_LT((basis.reconstruct(basis.project(targets)) - targets).cwiseAbs().maxCoeff(), 1e-5);
 }
 
+TEST(Train, ALearningCurveUsesTheFirstSamplesOfTheTrainSplitOnly) {
+  // fc-pca asks for 8 components; from the first 3 of the 8 train samples its PCA can fit only 3.
+  pl::TrainOptions options = necktieOptions(2);
+  options.model.architecture = pl::Architecture::FullyConnectedPca;
+  options.model.pcaComponents = 8;
+  options.trainSamples = 3;
+  const fs::path out = pixelcloth::testing::freshDir("model");
+  pl::train(necktieDataset(), out, options);
+  const nlohmann::json sidecar = pc::readJson(out / "model.json");
+  EXPECT_EQ(sidecar["train_samples"].get<int>(), 3);
+  EXPECT_EQ(sidecar["pca_components"].get<int>(), 3);
+  // More than the split holds is refused, naming the dataset; another subset does not resume this run.
+  options.trainSamples = 9;
+  const std::string tooMany =
+      inputErrorOf([&] { pl::train(necktieDataset(), pixelcloth::testing::freshDir("more"), options); });
+  EXPECT_NE(tooMany.find("--train-samples 9"), std::string::npos) << tooMany;
+  EXPECT_NE(tooMany.find("8 samples in its train split"), std::string::npos) << tooMany;
+  options.trainSamples = -1;
+  const std::string negative =
+      inputErrorOf([&] { pl::train(necktieDataset(), pixelcloth::testing::freshDir("less"), options); });
+  EXPECT_NE(negative.find("-1 train samples"), std::string::npos) << negative;
+  options.trainSamples = 4;
+  options.model.pcaComponents = 3;
+  const std::string other = inputErrorOf([&] { pl::train(necktieDataset(), out, options); });
+  EXPECT_NE(other.find("train_samples"), std::string::npos) << other;
+}
+
 TEST(Train, WrongModelsAndDamagedCheckpointsAreRefused) {
   pl::TrainOptions whole = necktieOptions(1);
   whole.model.architecture = pl::Architecture::Whole;

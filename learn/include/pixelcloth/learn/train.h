@@ -69,6 +69,9 @@ struct TrainOptions {
   /// Residual mode: a base folder of the dataset (`reconstruct --write-base`); the inputs gain the marker features
   /// and the targets become ground truth minus base. Empty: plain mode (pose in, values out).
   std::filesystem::path residual;
+  /// Learn from only the first this many samples of the train split (its rows in dataset order, which the sampler
+  /// drew at random); 0: all of them. For learning curves: the regularisation and test splits stay whole.
+  int trainSamples = 0;
   int epochs = 20;          ///< passes over the train split, [1, 100000]
   int batch = 8;            ///< samples per Adam step, [1, 4096]
   double learningRate = 1e-3;
